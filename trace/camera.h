@@ -1,0 +1,37 @@
+// The pinhole camera of DESIGN.md §2, centred on the eye (world coordinates are camera-relative).
+#pragma once
+
+#include "trace/ray.h"
+#include "trace/scene.h"
+
+namespace glint {
+
+class PinholeCamera {
+  public:
+    explicit PinholeCamera(const Camera& camera) : width_(camera.width), height_(camera.height) {
+        const DVec3 forward = glm::normalize(camera.look_at - camera.eye);
+        const DVec3 right = glm::normalize(glm::cross(forward, camera.up));
+        const DVec3 up = glm::cross(right, forward);
+        const double h = std::tan(glm::radians(camera.fov_y) / 2);
+        const double aspect = static_cast<double>(camera.width) / camera.height;
+        forward_ = Vec3(forward);
+        right_ = Vec3(right * (h * aspect));
+        up_ = Vec3(up * h);
+    }
+
+    // The ray through the centre of pixel (i, j), j = 0 the top row; origin at the eye.
+    Ray ray(int i, int j) const {
+        const float x = 2.0f * (static_cast<float>(i) + 0.5f) / static_cast<float>(width_) - 1.0f;
+        const float y = 1.0f - 2.0f * (static_cast<float>(j) + 0.5f) / static_cast<float>(height_);
+        return {Vec3(0.0f), glm::normalize(forward_ + x * right_ + y * up_)};
+    }
+
+    int width() const { return width_; }
+    int height() const { return height_; }
+
+  private:
+    int width_, height_;
+    Vec3 forward_, right_, up_; // right_ and up_ pre-scaled by h·aspect and h
+};
+
+} // namespace glint

@@ -1,0 +1,43 @@
+// 8-bit RGB images and their PNG files.
+#pragma once
+
+#include "trace/math.h"
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace glint {
+
+struct Image {
+    int width = 0;
+    int height = 0;
+    std::vector<std::uint8_t> rgb; // row-major, top row first, 3 bytes a pixel
+
+    Image() = default;
+    Image(int w, int h) : width(w), height(h), rgb(static_cast<std::size_t>(w) * h * 3) {}
+
+    std::uint8_t* pixel(int x, int y) {
+        return &rgb[(static_cast<std::size_t>(y) * width + x) * 3];
+    }
+    const std::uint8_t* pixel(int x, int y) const {
+        return &rgb[(static_cast<std::size_t>(y) * width + x) * 3];
+    }
+};
+
+// The display value of a colour channel: clamped once to [0, 1], then round(255·c).
+inline std::uint8_t to_byte(float c) {
+    return static_cast<std::uint8_t>(std::lround(255.0f * glm::clamp(c, 0.0f, 1.0f)));
+}
+
+// Writes `bytes` to `path` through a temporary file in the same directory and a rename, so
+// that `path` is either untouched or complete. Throws std::runtime_error naming the path.
+void write_file_atomically(const std::filesystem::path& path, const std::string& bytes);
+
+void write_png(const std::filesystem::path& path, const Image& image);
+
+// Throws std::runtime_error naming the path when it cannot be read as an image.
+Image read_png(const std::filesystem::path& path);
+
+} // namespace glint

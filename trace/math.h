@@ -1,0 +1,36 @@
+// Vector types, rounding-error constants and the lecture's reflection formula.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <limits>
+
+namespace glint {
+
+using Vec3 = glm::vec3;
+using DVec3 = glm::dvec3;
+using Mat3 = glm::mat3;
+using DMat4 = glm::dmat4;
+
+inline constexpr float kInfinity = std::numeric_limits<float>::infinity();
+
+// Unit roundoff of float (2^-24): one rounded operation has relative error at most this.
+inline constexpr float kUnitRoundoff = 0.5f * std::numeric_limits<float>::epsilon();
+
+// gamma(n) bounds the relative error of n consecutive rounded float operations
+// (Higham, "Accuracy and Stability of Numerical Algorithms", §3.1; pbrt-v4 util/float.h).
+constexpr float gamma(int n) {
+    return (static_cast<float>(n) * kUnitRoundoff) / (1 - static_cast<float>(n) * kUnitRoundoff);
+}
+
+// Perfect reflection of direction d about unit normal n: d' = d - 2n(n·d) (Ray Tracing III).
+inline Vec3 reflect(Vec3 d, Vec3 n) {
+    return d - 2.0f * n * glm::dot(n, d);
+}
+
+inline float max_component(Vec3 v) {
+    return glm::max(v.x, glm::max(v.y, v.z));
+}
+
+} // namespace glint

@@ -1,0 +1,27 @@
+// Rays and closest hits: the small values that flow through every intersection query.
+#pragma once
+
+#include "trace/math.h"
+
+namespace glint {
+
+// origin + t·direction. The direction is not required to be unit length: object-space rays
+// keep M⁻¹·d unnormalised so that t means the same point in world and object space.
+struct Ray {
+    Vec3 origin;
+    Vec3 direction;
+};
+
+inline constexpr std::uint32_t kNoObject = std::numeric_limits<std::uint32_t>::max();
+
+// The closest hit found so far. `primitive` is the triangle index within a mesh, or the part of
+// an analytic shape (box face, cylinder cap) so that the surface can be rebuilt without guessing.
+struct Hit {
+    float t = kInfinity;
+    std::uint32_t object = kNoObject;
+    std::uint32_t primitive = 0;
+
+    bool found() const { return object != kNoObject; }
+};
+
+} // namespace glint

@@ -1,0 +1,401 @@
+#include "trace/scene_loader.h"
+
+#include "trace/transform.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <initializer_list>
+#include <sstream>
+
+namespace glint {
+namespace {
+
+using nlohmann::json;
+
+// A JSON value and its JSON pointer (RFC 6901), for messages.
+struct Node {
+    const json& value;
+    std::string path;
+
+    Node operator[](std::size_t index) const {
+        return {value[index], path + "/" + std::to_string(index)};
+    }
+    Node child(const std::string& key) const {
+        std::string escaped;
+        for (char c : key) escaped += c == '~' ? "~0" : c == '/' ? "~1" : std::string(1, c);
+        return {value.at(key), path + "/" + escaped};
+    }
+};
+
+std::string type_name(const json& v) {
+    if (v.is_number()) return "a number";
+    if (v.is_string()) return "a string";
+    if (v.is_array()) return "an array";
+    if (v.is_object()) return "an object";
+    if (v.is_boolean()) return "a boolean";
+    return "null";
+}
+
+template <class Words> std::string join(const Words& words) {
+    std::string out;
+    for (std::string_view w : words) out += (out.empty() ? "" : ", ") + std::string(w);
+    return out;
+}
+
+class Loader {
+  public:
+    explicit Loader(std::string file) : file_(std::move(file)) {}
+
+    Scene load(const json& root) {
+        const Node top{root, ""};
+        expect_object(top, {"description", "camera", "background", "ambient", "lights", "materials",
+                            "objects", "render"});
+        Scene scene;
+        if (has(top, "description")) string(top.child("description"));
+        if (has(top, "camera")) scene.camera = camera(top.child("camera"));
+        if (has(top, "background")) scene.background = colour(top.child("background"));
+        if (has(top, "ambient")) scene.ambient = colour(top.child("ambient"));
+        if (has(top, "lights")) {
+            const Node lights = array(top.child("lights"));
+            for (std::size_t i = 0; i < lights.value.size(); ++i)
+                scene.lights.push_back(light(lights[i]));
+        }
+        scene.materials.push_back(Material{});
+        scene.material_names.push_back("default");
+        if (has(top, "materials")) materials(top.child("materials"), scene);
+        if (has(top, "render")) scene.render = render(top.child("render"));
+        if (has(top, "objects")) {
+            const Node objects = array(top.child("objects"));
+            for (std::size_t i = 0; i < objects.value.size(); ++i) object(objects[i], scene);
+        }
+        return scene;
+    }
+
+  private:
+    [[noreturn]] void fail(const Node& node, const std::string& message) const {
+        throw SceneError(file_ + ": " + (node.path.empty() ? "/" : node.path) + ": " + message);
+    }
+
+    static bool has(const Node& node, const char* key) { return node.value.contains(key); }
+
+    void expect_object(const Node& node, std::initializer_list<std::string_view> keys) const {
+        if (!node.value.is_object()) fail(node, "expected an object, got " + type_name(node.value));
+        for (const auto& [key, _] : node.value.items())
+            if (std::find(keys.begin(), keys.end(), key) == keys.end())
+                fail(node.child(key),
+                     "unknown key '" + key + "' (expected one of: " + join(keys) + ")");
+    }
+
+    Node array(const Node& node) const {
+        if (!node.value.is_array()) fail(node, "expected an array, got " + type_name(node.value));
+        return node;
+    }
+
+    std::string string(const Node& node) const {
+        if (!node.value.is_string()) fail(node, "expected a string, got " + type_name(node.value));
+        return node.value.get<std::string>();
+    }
+
+    double number(const Node& node) const {
+        if (!node.value.is_number()) fail(node, "expected a number, got " + type_name(node.value));
+        const double v = node.value.get<double>();
+        if (!std::isfinite(v)) fail(node, "must be finite");
+        return v;
+    }
+
+    double number_in(const Node& node, double lo, double hi) const {
+        const double v = number(node);
+        if (v < lo || v > hi) {
+            std::ostringstream range;
+            range << "must be between " << lo << " and " << hi << ", got " << v;
+            fail(node, range.str());
+        }
+        return v;
+    }
+
+    int integer_in(const Node& node, int lo, int hi) const {
+        const double v = number_in(node, lo, hi);
+        if (v != std::floor(v)) fail(node, "must be a whole number");
+        return static_cast<int>(v);
+    }
+
+    DVec3 vec3(const Node& node) const {
+        if (!node.value.is_array() || node.value.size() != 3)
+            fail(node,
+                 "expected an array of 3 numbers, got " +
+                     (node.value.is_array() ? "an array of " + std::to_string(node.value.size())
+                                            : type_name(node.value)));
+        return {number(node[0]), number(node[1]), number(node[2])};
+    }
+
+    Vec3 colour(const Node& node) const {
+        const DVec3 c = vec3(node);
+        for (int i = 0; i < 3; ++i)
+            if (c[i] < 0)
+                fail(node[static_cast<std::size_t>(i)], "colour components must not be negative");
+        return Vec3(c);
+    }
+
+    Camera camera(const Node& node) const {
+        expect_object(node, {"eye", "look_at", "up", "fov_y", "width", "height"});
+        Camera c;
+        if (has(node, "eye")) c.eye = vec3(node.child("eye"));
+        if (has(node, "look_at")) c.look_at = vec3(node.child("look_at"));
+        if (has(node, "up")) c.up = vec3(node.child("up"));
+        if (has(node, "fov_y")) {
+            c.fov_y = number(node.child("fov_y"));
+            if (!(c.fov_y > 0 && c.fov_y < 180))
+                fail(node.child("fov_y"), "must be an angle in degrees strictly between 0 and 180");
+        }
+        if (has(node, "width")) c.width = integer_in(node.child("width"), 1, kMaxImageSide);
+        if (has(node, "height")) c.height = integer_in(node.child("height"), 1, kMaxImageSide);
+        const DVec3 forward = c.look_at - c.eye;
+        if (glm::length(forward) == 0) fail(node, "eye and look_at must differ");
+        if (glm::length(c.up) == 0) fail(node.child("up"), "must not be zero");
+        const double sine = glm::length(glm::cross(glm::normalize(forward), glm::normalize(c.up)));
+        if (sine < 1e-6)
+            fail(has(node, "up") ? node.child("up") : node,
+                 "up is parallel to the viewing direction");
+        return c;
+    }
+
+    PointLight light(const Node& node) const {
+        expect_object(node, {"type", "position", "color"});
+        if (has(node, "type") && string(node.child("type")) != "point")
+            fail(node.child("type"),
+                 "unknown light type '" + string(node.child("type")) + "' (glint has: point)");
+        if (!has(node, "position")) fail(node, "a light needs a position");
+        PointLight l;
+        l.position = vec3(node.child("position"));
+        if (has(node, "color")) l.color = colour(node.child("color"));
+        return l;
+    }
+
+    void materials(const Node& node, Scene& scene) const {
+        if (!node.value.is_object())
+            fail(node, "expected an object of named materials, got " + type_name(node.value));
+        for (const auto& [name, _] : node.value.items()) {
+            if (name.empty()) fail(node, "material names must not be empty");
+            const Material m = material(node.child(name));
+            if (name == "default") { // redefines the material of objects that name none
+                scene.materials[0] = m;
+                continue;
+            }
+            scene.materials.push_back(m);
+            scene.material_names.push_back(name);
+        }
+    }
+
+    Material material(const Node& node) const {
+        expect_object(node, {"ambient", "diffuse", "specular", "shininess", "reflectivity"});
+        Material m;
+        if (has(node, "diffuse")) m.diffuse = colour(node.child("diffuse"));
+        m.ambient = has(node, "ambient") ? colour(node.child("ambient")) : m.diffuse;
+        if (has(node, "specular")) m.specular = colour(node.child("specular"));
+        if (has(node, "shininess"))
+            m.shininess = static_cast<float>(number_in(node.child("shininess"), 0, 1e4));
+        if (has(node, "reflectivity"))
+            m.reflectivity = static_cast<float>(number_in(node.child("reflectivity"), 0, 1));
+        return m;
+    }
+
+    RenderSettings render(const Node& node) const {
+        expect_object(node, {"max_depth", "min_reflectivity"});
+        RenderSettings r;
+        if (has(node, "max_depth")) r.max_depth = integer_in(node.child("max_depth"), 0, kMaxDepth);
+        if (has(node, "min_reflectivity"))
+            r.min_reflectivity =
+                static_cast<float>(number_in(node.child("min_reflectivity"), 0, 1));
+        return r;
+    }
+
+    DMat4 transform_entry(const Node& node) const {
+        expect_object(node, {"translate", "scale", "rotate", "matrix"});
+        if (node.value.size() != 1)
+            fail(node, "each transform entry has exactly one of: translate, scale, rotate, matrix");
+        if (has(node, "translate")) return translation_matrix(vec3(node.child("translate")));
+        if (has(node, "scale")) {
+            const Node s = node.child("scale");
+            const DVec3 factors = s.value.is_number() ? DVec3(number(s)) : vec3(s);
+            if (factors.x == 0 || factors.y == 0 || factors.z == 0)
+                fail(s, "components must be non-zero");
+            return scale_matrix(factors);
+        }
+        if (has(node, "rotate")) {
+            const Node r = node.child("rotate");
+            expect_object(r, {"axis", "degrees"});
+            if (!has(r, "axis") || !has(r, "degrees")) fail(r, "rotate needs an axis and degrees");
+            const DVec3 axis = vec3(r.child("axis"));
+            if (glm::length(axis) == 0) fail(r.child("axis"), "must not be zero");
+            return rotation_matrix(axis, number(r.child("degrees")));
+        }
+        const Node m = node.child("matrix");
+        if (!m.value.is_array() || m.value.size() != 4) fail(m, "expected 4 rows of 4 numbers");
+        DMat4 result(1.0);
+        for (std::size_t row = 0; row < 4; ++row) {
+            const Node r = m[row];
+            if (!r.value.is_array() || r.value.size() != 4) fail(r, "expected a row of 4 numbers");
+            for (std::size_t col = 0; col < 4; ++col)
+                result[static_cast<int>(col)][static_cast<int>(row)] = number(r[col]);
+        }
+        if (result[0][3] != 0 || result[1][3] != 0 || result[2][3] != 0 || result[3][3] != 1)
+            fail(m[3], "the last row of an affine matrix must be [0, 0, 0, 1]");
+        return result;
+    }
+
+    DMat4 transform(const Node& node) const {
+        array(node);
+        DMat4 m(1.0);
+        // Applied in order, first entry first: [scale, rotate, translate] gives M = T·R·S.
+        for (std::size_t i = 0; i < node.value.size(); ++i) m = transform_entry(node[i]) * m;
+        if (const auto why = why_unusable(m)) fail(node, *why);
+        return m;
+    }
+
+    Mesh mesh(const Node& node, ShapeKind shape) const {
+        if (!has(node, "vertices")) fail(node, std::string(shape_name(shape)) + " needs vertices");
+        const Node vertices = array(node.child("vertices"));
+        Mesh mesh;
+        if (vertices.value.size() > kMaxMeshVertices)
+            fail(vertices, "has " + std::to_string(vertices.value.size()) +
+                               " vertices; the limit is " + std::to_string(kMaxMeshVertices));
+        for (std::size_t i = 0; i < vertices.value.size(); ++i) {
+            const DVec3 v = vec3(vertices[i]);
+            if (glm::any(glm::greaterThan(glm::abs(v), DVec3(1e15))))
+                fail(vertices[i], "coordinates must be within ±1e15");
+            mesh.vertices.push_back(Vec3(v));
+            mesh.bounds.extend(mesh.vertices.back());
+        }
+        if (shape == ShapeKind::triangle) {
+            if (mesh.vertices.size() != 3) fail(vertices, "a triangle has exactly 3 vertices");
+            const Vec3 normal = glm::cross(mesh.vertices[1] - mesh.vertices[0],
+                                           mesh.vertices[2] - mesh.vertices[0]);
+            if (glm::length(normal) == 0) fail(vertices, "the triangle's vertices are collinear");
+            mesh.triangles.push_back({0, 1, 2});
+            return mesh;
+        }
+        if (!has(node, "indices")) fail(node, "mesh needs indices (3 per triangle)");
+        const Node indices = array(node.child("indices"));
+        // Either a flat list [a, b, c, d, e, f, …] or triples [[a, b, c], [d, e, f], …].
+        std::vector<std::uint32_t> flat;
+        const auto index = [&](const Node& n) {
+            flat.push_back(static_cast<std::uint32_t>(
+                integer_in(n, 0, static_cast<int>(mesh.vertices.size()) - 1)));
+        };
+        for (std::size_t i = 0; i < indices.value.size(); ++i) {
+            const Node entry = indices[i];
+            if (entry.value.is_array()) {
+                if (entry.value.size() != 3) fail(entry, "a triangle has exactly 3 indices");
+                for (std::size_t k = 0; k < 3; ++k) index(entry[k]);
+            } else {
+                index(entry);
+            }
+        }
+        if (flat.empty() || flat.size() % 3 != 0)
+            fail(indices,
+                 "needs a positive multiple of 3 indices, got " + std::to_string(flat.size()));
+        if (flat.size() / 3 > kMaxMeshTriangles)
+            fail(indices,
+                 "has more triangles than the limit of " + std::to_string(kMaxMeshTriangles));
+        for (std::size_t i = 0; i < flat.size(); i += 3)
+            mesh.triangles.push_back({flat[i], flat[i + 1], flat[i + 2]});
+        return mesh;
+    }
+
+    void object(const Node& node, Scene& scene) const {
+        expect_object(
+            node, {"shape", "material", "transform", "top_radius", "vertices", "indices", "file"});
+        if (!has(node, "shape")) fail(node, "an object needs a shape (" + join(kShapeNames) + ")");
+        const Node shape_node = node.child("shape");
+        const std::string shape = string(shape_node);
+        const auto it = std::find(kShapeNames.begin(), kShapeNames.end(), shape);
+        if (it == kShapeNames.end()) fail(shape_node, "unknown shape '" + shape + "'");
+        SceneObject o;
+        o.shape = static_cast<ShapeKind>(it - kShapeNames.begin());
+        const bool triangles = o.shape == ShapeKind::triangle || o.shape == ShapeKind::mesh;
+        if (has(node, "top_radius") && o.shape != ShapeKind::cone)
+            fail(node.child("top_radius"), "only cones have a top_radius");
+        if (has(node, "vertices") && !triangles)
+            fail(node.child("vertices"), "only triangles and meshes have vertices");
+        if (has(node, "indices") && o.shape != ShapeKind::mesh)
+            fail(node.child("indices"), "only meshes have indices");
+        if (has(node, "file")) {
+            if (o.shape != ShapeKind::mesh)
+                fail(node.child("file"), "only meshes are read from files");
+            fail(node.child("file"),
+                 "mesh files (OBJ) are not supported yet; give vertices and indices inline");
+        }
+        if (has(node, "material")) {
+            const Node m = node.child("material");
+            const std::string name = string(m);
+            const auto found =
+                std::find(scene.material_names.begin(), scene.material_names.end(), name);
+            if (found == scene.material_names.end()) {
+                std::string known;
+                for (const std::string& n : scene.material_names)
+                    known += (known.empty() ? "" : ", ") + n;
+                fail(m, "no material named '" + name + "' (known: " + known + ")");
+            }
+            o.material = static_cast<std::uint32_t>(found - scene.material_names.begin());
+        }
+        if (has(node, "transform")) o.transform = transform(node.child("transform"));
+        if (has(node, "top_radius"))
+            o.top_radius = static_cast<float>(number_in(node.child("top_radius"), 0, 1e6));
+        if (triangles) {
+            o.mesh = static_cast<std::uint32_t>(scene.meshes.size());
+            scene.meshes.push_back(mesh(node, o.shape));
+        }
+        scene.objects.push_back(o);
+    }
+
+    std::string file_;
+};
+
+} // namespace
+
+Scene parse_scene(const std::string& text, const std::string& name) {
+    json root;
+    try {
+        root = json::parse(text);
+    } catch (const json::parse_error& e) {
+        // Turn the byte offset into line:column for people; nlohmann counts bytes from 1.
+        std::size_t line = 1, column = 1;
+        const std::size_t end = std::min<std::size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
+        for (std::size_t i = 0; i < end; ++i) {
+            if (text[i] == '\n')
+                ++line, column = 1;
+            else
+                ++column;
+        }
+        std::string what = e.what();
+        // Drop nlohmann's "[json.exception.parse_error.101] parse error at line 1, column 2: ".
+        if (const auto colon = what.find(": "); colon != std::string::npos)
+            what = what.substr(colon + 2);
+        throw SceneError(name + ":" + std::to_string(line) + ":" + std::to_string(column) +
+                         ": malformed JSON: " + what);
+    }
+    return Loader(name).load(root);
+}
+
+Scene load_scene(const std::filesystem::path& path) {
+    const std::string name = path.string();
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw SceneError(name + ": is a directory, not a scene file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw SceneError(name + ": cannot open scene file: " + std::strerror(errno));
+    const auto size = std::filesystem::file_size(path, ec);
+    if (!ec && size > kMaxSceneBytes)
+        throw SceneError(name + ": scene file is " + std::to_string(size >> 20) +
+                         " MiB; the limit is " + std::to_string(kMaxSceneBytes >> 20) + " MiB");
+    std::ostringstream text;
+    text << in.rdbuf();
+    return parse_scene(text.str(), name);
+}
+
+} // namespace glint

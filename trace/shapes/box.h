@@ -1,0 +1,47 @@
+// The box [-1, 1]³; normal along the axis of the face that was hit.
+#pragma once
+
+#include "trace/shapes/shape.h"
+
+#include <cmath>
+
+namespace glint {
+
+// Face numbering: part = 2·axis + (1 for the +1 face, 0 for the −1 face).
+inline ShapeHit intersect_box(const Ray& ray, float t_max) {
+    float t_near = -kInfinity, t_far = kInfinity;
+    std::uint32_t near_face = 0, far_face = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+        const float o = ray.origin[axis];
+        const float d = ray.direction[axis];
+        if (d == 0) {
+            if (o < -1.0f || o > 1.0f) return {}; // parallel to this slab and outside it
+            continue;
+        }
+        float t0 = (-1.0f - o) / d;
+        float t1 = (1.0f - o) / d;
+        std::uint32_t face0 = 2 * axis, face1 = 2 * axis + 1;
+        if (t0 > t1) {
+            std::swap(t0, t1);
+            std::swap(face0, face1);
+        }
+        if (t0 > t_near) t_near = t0, near_face = face0;
+        if (t1 < t_far) t_far = t1, far_face = face1;
+    }
+    if (t_near > t_far) return {};
+    const ShapeHit entry = candidate(t_near, t_max, near_face);
+    return entry.found() ? entry : candidate(t_far, t_max, far_face);
+}
+
+inline SurfaceSample box_surface(Vec3 p, std::uint32_t face) {
+    const int axis = static_cast<int>(face / 2);
+    const float side = (face % 2) ? 1.0f : -1.0f;
+    Vec3 error = gamma(3) * glm::abs(p);
+    p[axis] = side; // exact on the face
+    error[axis] = 0.0f;
+    Vec3 normal(0.0f);
+    normal[axis] = side;
+    return {p, normal, error};
+}
+
+} // namespace glint

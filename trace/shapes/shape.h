@@ -1,0 +1,47 @@
+// What every unit primitive answers: where a ray first crosses it (object space), and the
+// surface there (point projected back onto the surface, outward normal, error bound).
+#pragma once
+
+#include "trace/math.h"
+#include "trace/ray.h"
+
+#include <array>
+#include <string_view>
+
+namespace glint {
+
+// The closed set of shapes (DESIGN.md §3). One switch in World dispatches on it.
+enum class ShapeKind : std::uint8_t { sphere, plane, box, disk, cylinder, cone, triangle, mesh };
+
+inline constexpr std::array<std::string_view, 8> kShapeNames = {
+    "sphere", "plane", "box", "disk", "cylinder", "cone", "triangle", "mesh"};
+
+inline std::string_view shape_name(ShapeKind kind) {
+    return kShapeNames[static_cast<int>(kind)];
+}
+
+struct ShapeHit {
+    float t = kInfinity;
+    std::uint32_t part = 0; // box face, cylinder/cone side or cap, triangle index
+
+    bool found() const { return t != kInfinity; }
+};
+
+// A point on a unit primitive in object space.
+struct SurfaceSample {
+    Vec3 point;  // on the surface up to `error`
+    Vec3 normal; // unit, outward
+    Vec3 error;  // per-component bound on |point − exact surface point|
+};
+
+// The nearer of two candidate hits; on equal t the first wins, keeping results deterministic.
+inline ShapeHit closer(ShapeHit a, ShapeHit b) {
+    return b.t < a.t ? b : a;
+}
+
+// A candidate t counts when it lies in the open interval (0, t_max).
+inline ShapeHit candidate(float t, float t_max, std::uint32_t part) {
+    return (t > 0 && t < t_max) ? ShapeHit{t, part} : ShapeHit{};
+}
+
+} // namespace glint

@@ -1,0 +1,189 @@
+#include "trace/transform.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+#include <cstdio>
+
+namespace glint {
+
+DMat4 translation_matrix(DVec3 offset) {
+    return glm::translate(DMat4(1.0), offset);
+}
+
+DMat4 scale_matrix(DVec3 factors) {
+    return glm::scale(DMat4(1.0), factors);
+}
+
+DMat4 rotation_matrix(DVec3 axis, double degrees) {
+    return glm::rotate(DMat4(1.0), glm::radians(degrees), glm::normalize(axis));
+}
+
+namespace {
+
+// Frobenius norm of a 3×3 matrix.
+double frobenius(const glm::dmat3& a) {
+    double sum = 0;
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) sum += a[c][r] * a[c][r];
+    return std::sqrt(sum);
+}
+
+std::string format_double(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", value);
+    return text;
+}
+
+// Largest float magnitude a transform entry may have: squares of coordinates must still fit.
+constexpr double kMaxEntry = 1e15;
+
+} // namespace
+
+std::optional<std::string> why_unusable(const DMat4& m) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(m[c][r])) return "transform has a non-finite entry";
+    // glm is column-major: m[column][row]. The last row must be [0 0 0 1] for an affine map.
+    if (m[0][3] != 0 || m[1][3] != 0 || m[2][3] != 0 || m[3][3] != 1)
+        return "transform is not affine (last row must be [0, 0, 0, 1])";
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 3; ++r)
+            if (std::abs(m[c][r]) > kMaxEntry)
+                return "transform entry " + format_double(m[c][r]) + " is beyond " +
+                       format_double(kMaxEntry) + ", too large for float";
+    const glm::dmat3 linear(m);
+    const double det = glm::determinant(linear);
+    if (det == 0 || !std::isfinite(det)) return "transform is singular (determinant 0)";
+    glm::dmat3 inverse = glm::inverse(linear);
+    // Row-equilibrate M⁻¹ (rows are glm's inverse[·][r]) and measure what conditioning is left.
+    for (int r = 0; r < 3; ++r) {
+        const double norm =
+            std::sqrt(inverse[0][r] * inverse[0][r] + inverse[1][r] * inverse[1][r] +
+                      inverse[2][r] * inverse[2][r]);
+        if (norm < 1 / kMaxEntry || norm > kMaxEntry)
+            return "transform scales by " + format_double(1 / norm) +
+                   ", outside what float can invert (1e-15 to 1e15)";
+        for (int c = 0; c < 3; ++c) inverse[c][r] /= norm;
+    }
+    // Frobenius condition number; 3 for a perfectly conditioned matrix, so scale it to 1.
+    const double condition = frobenius(inverse) * frobenius(glm::inverse(inverse)) / 3.0;
+    if (!(condition <= kMaxConditionNumber))
+        return "transform is too close to singular to invert in float (condition number " +
+               format_double(condition) + ", limit " + format_double(kMaxConditionNumber) + ")";
+    return std::nullopt;
+}
+
+Transform make_transform(const DMat4& m) {
+    Transform t;
+    const DMat4 inverse = glm::inverse(m);
+    t.linear = Mat3(glm::dmat3(m));
+    t.offset = Vec3(DVec3(m[3]));
+    t.inverse_linear = Mat3(glm::dmat3(inverse));
+    t.inverse_offset = Vec3(DVec3(inverse[3]));
+
+    const Mat3& a = t.linear;
+    const bool diagonal = a[0][1] == 0 && a[0][2] == 0 && a[1][0] == 0 && a[1][2] == 0 &&
+                          a[2][0] == 0 && a[2][1] == 0;
+    const bool uniform = diagonal && a[0][0] == a[1][1] && a[1][1] == a[2][2] && a[0][0] > 0;
+    const bool no_offset = t.offset == Vec3(0.0f);
+    if (uniform && a[0][0] == 1.0f) {
+        t.kind = no_offset ? TransformClass::identity : TransformClass::translation;
+        // The fast paths use -offset for the inverse: make the general fields agree exactly.
+        t.inverse_linear = Mat3(1.0f);
+        t.inverse_offset = -t.offset;
+    } else if (uniform) {
+        t.kind = TransformClass::uniform_scale;
+        t.scale = a[0][0];
+        t.inverse_scale = 1.0f / t.scale;
+    } else {
+        t.kind = TransformClass::general;
+    }
+
+    // Round-trip inconsistency of the two stored float matrices, measured exactly enough in double.
+    const glm::dmat3 product = glm::dmat3(t.inverse_linear) * glm::dmat3(t.linear);
+    const DVec3 offset_product =
+        glm::dmat3(t.inverse_linear) * DVec3(t.offset) + DVec3(t.inverse_offset);
+    double linear_error = 0, offset_error = 0;
+    for (int c = 0; c < 3; ++c) {
+        for (int r = 0; r < 3; ++r)
+            linear_error = std::max(linear_error, std::abs(product[c][r] - (c == r ? 1.0 : 0.0)));
+        offset_error = std::max(offset_error, std::abs(offset_product[c]));
+    }
+    // Round up so the float bound is not smaller than the double one.
+    t.roundtrip_linear_error = static_cast<float>(linear_error) * (1 + 2 * kUnitRoundoff);
+    t.roundtrip_offset_error = static_cast<float>(offset_error) * (1 + 2 * kUnitRoundoff);
+    return t;
+}
+
+Ray Transform::to_object(const Ray& ray) const {
+    switch (kind) {
+    case TransformClass::identity:
+        return ray;
+    case TransformClass::translation:
+        return {ray.origin - offset, ray.direction};
+    case TransformClass::uniform_scale:
+        return {(ray.origin - offset) * inverse_scale, ray.direction * inverse_scale};
+    case TransformClass::general:
+        break;
+    }
+    return {inverse_linear * ray.origin + inverse_offset, inverse_linear * ray.direction};
+}
+
+Vec3 Transform::point_to_world(Vec3 p) const {
+    switch (kind) {
+    case TransformClass::identity:
+        return p;
+    case TransformClass::translation:
+        return p + offset;
+    case TransformClass::uniform_scale:
+        return p * scale + offset;
+    case TransformClass::general:
+        break;
+    }
+    return linear * p + offset;
+}
+
+Vec3 Transform::normal_to_world(Vec3 n) const {
+    // Translations and positive uniform scales leave unit normals unchanged.
+    if (kind != TransformClass::general) return n;
+    return glm::normalize(glm::transpose(inverse_linear) * n);
+}
+
+float Transform::normal_stretch(Vec3 n) const {
+    switch (kind) {
+    case TransformClass::identity:
+    case TransformClass::translation:
+        return 1.0f;
+    case TransformClass::uniform_scale:
+        return inverse_scale;
+    case TransformClass::general:
+        break;
+    }
+    return glm::length(glm::transpose(inverse_linear) * n);
+}
+
+Vec3 Transform::roundtrip_error(Vec3 p, Vec3 p_error) const {
+    // p (in float) lies within p_error of the exact surface. Forward, w = L·p + t rounds with
+    // error at most γ3(|L|·|p| + |t|) (pbrt-v4, Transform::ApplyPointWithError); the offset along
+    // the normal adds one rounding γ1|w|. Back, M⁻¹·w has the same form with |L⁻¹|, plus the
+    // stored float matrices' own inconsistency. Identity maps round only in that final addition.
+    const Vec3 abs_p = glm::abs(p);
+    if (kind == TransformClass::identity) return p_error + gamma(2) * abs_p;
+    const bool general = kind == TransformClass::general;
+    const Mat3 abs_linear =
+        general ? Mat3(glm::abs(linear[0]), glm::abs(linear[1]), glm::abs(linear[2])) : Mat3(scale);
+    const Mat3 abs_inverse = general
+                                 ? Mat3(glm::abs(inverse_linear[0]), glm::abs(inverse_linear[1]),
+                                        glm::abs(inverse_linear[2]))
+                                 : Mat3(inverse_scale);
+    const Vec3 world = abs_linear * abs_p + glm::abs(offset);
+    const Vec3 world_error = gamma(4) * world;
+    const Vec3 back_error =
+        abs_inverse * world_error +
+        gamma(3) * (abs_inverse * (world + world_error) + glm::abs(inverse_offset));
+    const float p_sum = abs_p.x + abs_p.y + abs_p.z;
+    return p_error + back_error + Vec3(roundtrip_linear_error * p_sum + roundtrip_offset_error);
+}
+
+} // namespace glint

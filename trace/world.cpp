@@ -1,0 +1,158 @@
+#include "trace/world.h"
+
+#include "trace/shapes/box.h"
+#include "trace/shapes/cone.h"
+#include "trace/shapes/cylinder.h"
+#include "trace/shapes/plane.h"
+#include "trace/shapes/sphere.h"
+
+#include <cmath>
+
+namespace glint {
+namespace {
+
+// Object-space bounds of a unit primitive (planes have none).
+Bounds unit_bounds(const SceneObject& object, const std::vector<Mesh>& meshes) {
+    switch (object.shape) {
+    case ShapeKind::sphere:
+    case ShapeKind::box:
+        return {Vec3(-1.0f), Vec3(1.0f)};
+    case ShapeKind::disk:
+        return {Vec3(-1.0f, 0.0f, -1.0f), Vec3(1.0f, 0.0f, 1.0f)};
+    case ShapeKind::cylinder:
+        return {Vec3(-1.0f, 0.0f, -1.0f), Vec3(1.0f, 1.0f, 1.0f)};
+    case ShapeKind::cone: {
+        const float r = std::max(1.0f, object.top_radius);
+        return {Vec3(-r, 0.0f, -r), Vec3(r, 1.0f, r)};
+    }
+    case ShapeKind::triangle:
+    case ShapeKind::mesh:
+        return meshes[object.mesh].bounds;
+    case ShapeKind::plane:
+        break;
+    }
+    return {};
+}
+
+// World bounds of M·(object bounds): the eight corners mapped in double, then widened by a few
+// float ulps so that the float box still contains every point the float transform produces.
+Bounds world_bounds(const Bounds& local, const DMat4& m) {
+    DVec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+    for (int corner = 0; corner < 8; ++corner) {
+        const DVec3 p((corner & 1) ? local.hi.x : local.lo.x,
+                      (corner & 2) ? local.hi.y : local.lo.y,
+                      (corner & 4) ? local.hi.z : local.lo.z);
+        const DVec3 w = DVec3(m * glm::dvec4(p, 1.0));
+        lo = glm::min(lo, w);
+        hi = glm::max(hi, w);
+    }
+    const DVec3 pad = (glm::abs(lo) + glm::abs(hi) + (hi - lo)) * (8.0 * kUnitRoundoff);
+    return {Vec3(lo - pad), Vec3(hi + pad)};
+}
+
+} // namespace
+
+World::World(const Scene& scene)
+    : camera_(scene.camera), meshes_(scene.meshes), materials_(scene.materials),
+      background_(scene.background), ambient_(scene.ambient), settings_(scene.render) {
+    // Camera-relative coordinates, composed in double: precision follows the scene's size, not
+    // its distance from the world origin (DESIGN.md §2).
+    const DMat4 to_camera = translation_matrix(-scene.camera.eye);
+    objects_.reserve(scene.objects.size());
+    for (const SceneObject& o : scene.objects) {
+        const DMat4 m = to_camera * o.transform;
+        const bool bounded = o.shape != ShapeKind::plane;
+        objects_.push_back({o.shape, make_transform(m), o.material, o.top_radius, o.mesh, bounded,
+                            bounded ? world_bounds(unit_bounds(o, meshes_), m) : Bounds{}});
+    }
+    for (const PointLight& light : scene.lights)
+        lights_.push_back({Vec3(light.position - scene.camera.eye), light.color});
+}
+
+ShapeHit World::intersect_object(const Object& object, const Ray& world_ray, float t_max) const {
+    const Ray ray = object.transform.to_object(world_ray);
+    switch (object.shape) {
+    case ShapeKind::sphere:
+        return intersect_sphere(ray, t_max);
+    case ShapeKind::plane:
+        return intersect_plane(ray, t_max);
+    case ShapeKind::box:
+        return intersect_box(ray, t_max);
+    case ShapeKind::disk:
+        return intersect_disk(ray, t_max);
+    case ShapeKind::cylinder:
+        return intersect_cylinder(ray, t_max);
+    case ShapeKind::cone:
+        return intersect_cone(ray, object.top_radius, t_max);
+    case ShapeKind::triangle:
+    case ShapeKind::mesh:
+        return intersect_mesh(meshes_[object.mesh], ray, t_max);
+    }
+    return {};
+}
+
+Hit World::intersect(const Ray& ray, float t_max) const {
+    Hit best;
+    best.t = t_max;
+    const Vec3 inverse_direction = 1.0f / ray.direction;
+    for (std::uint32_t i = 0; i < objects_.size(); ++i) {
+        const Object& object = objects_[i];
+        if (object.bounded && !hits_bounds(object.bounds, ray, inverse_direction, best.t)) continue;
+        const ShapeHit h = intersect_object(object, ray, best.t);
+        if (h.t < best.t) best = {h.t, i, h.part};
+    }
+    return best;
+}
+
+bool World::occluded(const Ray& ray, float t_max) const {
+    const Vec3 inverse_direction = 1.0f / ray.direction;
+    for (const Object& object : objects_) {
+        if (object.bounded && !hits_bounds(object.bounds, ray, inverse_direction, t_max)) continue;
+        if (intersect_object(object, ray, t_max).found()) return true;
+    }
+    return false;
+}
+
+SurfacePoint World::surface(const Ray& ray, const Hit& hit) const {
+    const Object& object = objects_[hit.object];
+    const Transform& m = object.transform;
+    const Ray local = m.to_object(ray);
+    const Vec3 p = local.origin + hit.t * local.direction;
+    SurfaceSample s;
+    switch (object.shape) {
+    case ShapeKind::sphere:
+        s = sphere_surface(p);
+        break;
+    case ShapeKind::plane:
+    case ShapeKind::disk:
+        s = plane_surface(p);
+        break;
+    case ShapeKind::box:
+        s = box_surface(p, hit.primitive);
+        break;
+    case ShapeKind::cylinder:
+        s = cylinder_surface(p, hit.primitive);
+        break;
+    case ShapeKind::cone:
+        s = cone_surface(p, hit.primitive, object.top_radius);
+        break;
+    case ShapeKind::triangle:
+    case ShapeKind::mesh:
+        s = mesh_surface(meshes_[object.mesh], local, hit.primitive);
+        break;
+    }
+    Vec3 normal = m.normal_to_world(s.normal);
+    if (glm::dot(normal, ray.direction) > 0) normal = -normal;
+    // Spawn offset (Wächter & Binder, Ray Tracing Gems ch. 6; pbrt-v4's OffsetRayOrigin): a new
+    // ray from this point is intersected with this object after mapping back by M⁻¹, so it must
+    // leave the object-space error box of the point: its extent along the object normal is
+    // |n|·error (surface projection + float round trip, see roundtrip_error). Moving δ along the
+    // world normal moves the object point δ·|M⁻ᵀn| along n, hence δ = |n|·error / |M⁻ᵀn|. Twice
+    // that keeps the sign of the next intersection's near root (c = |o|² − 1 for spheres, o − 1
+    // for box faces) clear of its own rounding.
+    const Vec3 error = m.roundtrip_error(s.point, s.error);
+    const float offset = 2.0f * glm::dot(glm::abs(s.normal), error) / m.normal_stretch(s.normal);
+    return {m.point_to_world(s.point), normal, offset};
+}
+
+} // namespace glint

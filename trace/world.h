@@ -1,0 +1,68 @@
+// The scene prepared for tracing: camera-relative float transforms, object bounds, and the
+// brute-force closest-hit and any-hit queries (the `list` structure every other one must match).
+#pragma once
+
+#include "trace/camera.h"
+#include "trace/scene.h"
+#include "trace/transform.h"
+
+#include <vector>
+
+namespace glint {
+
+struct Object {
+    ShapeKind shape;
+    Transform transform; // object → camera-relative world
+    std::uint32_t material;
+    float top_radius;
+    std::uint32_t mesh;
+    bool bounded;  // false for planes
+    Bounds bounds; // camera-relative world bounds, conservative
+};
+
+struct Light {
+    Vec3 position; // camera-relative
+    Vec3 color;
+};
+
+// A hit rebuilt for shading, in camera-relative world space.
+struct SurfacePoint {
+    Vec3 position;
+    Vec3 normal;  // unit geometric normal, flipped to face the incoming ray
+    float offset; // distance along `normal` that clears the surface's rounding error
+    Vec3 spawn() const { return position + offset * normal; }
+};
+
+class World {
+  public:
+    explicit World(const Scene& scene);
+
+    // The closest hit in (0, t_max); ties go to the lower object index.
+    Hit intersect(const Ray& ray, float t_max = kInfinity) const;
+    // Whether anything is hit in (0, t_max).
+    bool occluded(const Ray& ray, float t_max) const;
+    SurfacePoint surface(const Ray& ray, const Hit& hit) const;
+
+    const PinholeCamera& camera() const { return camera_; }
+    const std::vector<Object>& objects() const { return objects_; }
+    const std::vector<Light>& lights() const { return lights_; }
+    const Material& material(std::uint32_t object) const {
+        return materials_[objects_[object].material];
+    }
+    Vec3 background() const { return background_; }
+    Vec3 ambient() const { return ambient_; }
+    const RenderSettings& settings() const { return settings_; }
+
+  private:
+    ShapeHit intersect_object(const Object& object, const Ray& world_ray, float t_max) const;
+
+    PinholeCamera camera_;
+    std::vector<Object> objects_;
+    std::vector<Mesh> meshes_;
+    std::vector<Material> materials_;
+    std::vector<Light> lights_;
+    Vec3 background_, ambient_;
+    RenderSettings settings_;
+};
+
+} // namespace glint
