@@ -356,6 +356,29 @@ class Loader {
     std::string file_;
 };
 
+// "file:line:column" of the byte at `offset` (0-based) in `text`.
+std::string place(const std::string& name, const std::string& text, std::size_t offset) {
+    std::size_t line = 1, column = 1;
+    for (std::size_t i = 0; i < std::min(offset, text.size()); ++i) {
+        if (text[i] == '\n')
+            ++line, column = 1;
+        else
+            ++column;
+    }
+    return name + ":" + std::to_string(line) + ":" + std::to_string(column);
+}
+
+// nlohmann's message without its "[json.exception.…] parse error at line 1, column 2: " prefix.
+std::string bare_message(const json::exception& e) {
+    std::string what = e.what();
+    if (const auto bracket = what.find("] "); bracket != std::string::npos)
+        what = what.substr(bracket + 2);
+    if (const auto colon = what.find(": ");
+        what.rfind("parse error", 0) == 0 && colon != std::string::npos)
+        what = what.substr(colon + 2);
+    return what;
+}
+
 } // namespace
 
 Scene parse_scene(const std::string& text, const std::string& name) {
@@ -363,21 +386,21 @@ Scene parse_scene(const std::string& text, const std::string& name) {
     try {
         root = json::parse(text);
     } catch (const json::parse_error& e) {
-        // Turn the byte offset into line:column for people; nlohmann counts bytes from 1.
-        std::size_t line = 1, column = 1;
-        const std::size_t end = std::min<std::size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
-        for (std::size_t i = 0; i < end; ++i) {
-            if (text[i] == '\n')
-                ++line, column = 1;
-            else
-                ++column;
+        // nlohmann counts the offending byte from 1.
+        throw SceneError(place(name, text, e.byte > 0 ? e.byte - 1 : 0) +
+                         ": malformed JSON: " + bare_message(e));
+    } catch (const json::exception& e) {
+        // A number too large for a double ("1e400") stops parsing without a position: find the
+        // literal nlohmann quotes in its message.
+        std::string what = bare_message(e);
+        const auto open = what.find('\''), close = what.rfind('\'');
+        std::size_t offset = 0;
+        if (open != std::string::npos && close > open) {
+            offset = text.find(what.substr(open + 1, close - open - 1));
+            if (offset == std::string::npos) offset = 0;
         }
-        std::string what = e.what();
-        // Drop nlohmann's "[json.exception.parse_error.101] parse error at line 1, column 2: ".
-        if (const auto colon = what.find(": "); colon != std::string::npos)
-            what = what.substr(colon + 2);
-        throw SceneError(name + ":" + std::to_string(line) + ":" + std::to_string(column) +
-                         ": malformed JSON: " + what);
+        throw SceneError(place(name, text, offset) + ": " + what +
+                         " (numbers must be finite doubles)");
     }
     return Loader(name).load(root);
 }
