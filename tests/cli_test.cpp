@@ -1,0 +1,171 @@
+// The glint command as a user meets it: what a successful render prints and writes, and every
+// class of bad input exiting 2 with its message while leaving no file behind and an existing
+// output untouched.
+#include "test_scenes.h"
+
+#include "trace/image.h"
+
+#include <nlohmann/json.hpp>
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+
+namespace glint {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+    int exit_code;
+    std::string out, err;
+};
+
+std::string slurp(const fs::path& path) {
+    std::ifstream in(path);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// A fresh directory per test, so tests can run in parallel under ctest.
+fs::path fresh_dir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    fs::path dir = fs::path(::testing::TempDir()) / "glint_cli" /
+                   (std::string(info->test_suite_name()) + "." + info->name());
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+Outcome glint(const fs::path& dir, const std::string& args) {
+    const std::string command = "cd '" + dir.string() + "' && '" GLINT_BINARY "' " + args +
+                                " >stdout.txt 2>stderr.txt </dev/null";
+    const int status = std::system(command.c_str());
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir / "stdout.txt"),
+            slurp(dir / "stderr.txt")};
+}
+
+void write(const fs::path& path, const std::string& text) {
+    std::ofstream(path) << text;
+}
+
+TEST(Cli, RenderWritesThePngAndReportsPathTimeAndRayCounts) {
+    const fs::path dir = fresh_dir();
+    const Outcome r = glint(dir, "render '" GLINT_SOURCE_DIR
+                                 "/scenes/default.json' -o a.png --size 64x48 --stats s.json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("wrote a.png (64x48"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(" s (render "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("3072 primary"), std::string::npos) << r.out;
+    const Image image = read_png(dir / "a.png");
+    EXPECT_EQ(image.width, 64);
+    EXPECT_EQ(image.height, 48);
+    const auto stats = nlohmann::json::parse(slurp(dir / "s.json"));
+    EXPECT_EQ(stats["rays"]["primary"], 3072);
+    EXPECT_GT(stats["rays"]["shadow"], 0);
+    EXPECT_GT(stats["rays"]["reflection"], 0);
+    EXPECT_GT(stats["seconds"]["total"], 0.0);
+    EXPECT_TRUE(r.err.empty()) << "no progress output when stderr is not a terminal: " << r.err;
+}
+
+TEST(Cli, WithoutArgumentsRendersTheDefaultSceneIntoOut) {
+    const fs::path dir = fresh_dir();
+    const Outcome r = glint(dir, "render --size 16x12");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(fs::exists(dir / "out/default.png"));
+}
+
+TEST(Cli, OverridesChangeWhatIsTraced) {
+    const fs::path dir = fresh_dir();
+    const Outcome r = glint(dir, "render --size 16x12 --max-depth 0 -o a.png --threads 1");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find(" 0 reflection"), std::string::npos) << r.out;
+}
+
+struct BadRun {
+    const char* what;
+    const char* scene; // written to scene.json when not empty
+    const char* args;
+    const char* message;
+};
+
+class BadRunTest : public ::testing::TestWithParam<BadRun> {};
+
+TEST_P(BadRunTest, ExitsTwoWithItsMessageAndWritesNothing) {
+    const BadRun& bad = GetParam();
+    const fs::path dir = fresh_dir();
+    if (*bad.scene) write(dir / "scene.json", bad.scene);
+    write(dir / "keep.png", "precious");
+    Outcome r = glint(dir, std::string(bad.args) + " -o new.png");
+    EXPECT_EQ(r.exit_code, 2) << bad.what << ": " << r.err;
+    EXPECT_NE(r.err.find(bad.message), std::string::npos) << bad.what << ": " << r.err;
+    EXPECT_FALSE(fs::exists(dir / "new.png")) << bad.what;
+    r = glint(dir, std::string(bad.args) + " -o keep.png");
+    EXPECT_EQ(r.exit_code, 2) << bad.what;
+    EXPECT_EQ(slurp(dir / "keep.png"), "precious")
+        << bad.what << ": an existing output was touched";
+    for (const auto& entry : fs::directory_iterator(dir))
+        EXPECT_EQ(entry.path().filename().string().find(".keep.png."), std::string::npos)
+            << "temporary file left";
+}
+
+// clang-format off
+INSTANTIATE_TEST_SUITE_P(EveryClass, BadRunTest, ::testing::Values(
+    BadRun{"malformed JSON", "{\"objects\": [", "render scene.json", "glint: error: scene.json:1:14: malformed JSON"},
+    BadRun{"unknown key", R"({"objects": [{"shape": "sphere", "materal": "x"}]})", "render scene.json", "scene.json: /objects/0/materal: unknown key"},
+    BadRun{"wrong type", R"({"camera": {"width": "wide"}})", "render scene.json", "scene.json: /camera/width: expected a number"},
+    BadRun{"missing material", R"({"objects": [{"shape": "sphere", "material": "gold"}]})", "render scene.json", "/objects/0/material: no material named 'gold'"},
+    BadRun{"number beyond double", R"({"camera": {"eye": [0, 0, 1e400]}})", "render scene.json", "scene.json:1:27: number overflow parsing '1e400'"},
+    BadRun{"zero scale", R"({"objects": [{"shape": "box", "transform": [{"scale": 0}]}]})", "render scene.json", "/objects/0/transform/0/scale: components must be non-zero"},
+    BadRun{"out of range", R"({"render": {"min_reflectivity": 2}})", "render scene.json", "/render/min_reflectivity: must be between 0 and 1"},
+    BadRun{"singular transform", R"({"objects": [{"shape": "box", "transform": [{"matrix": [[1,2,3,0],[2,4,6,0],[0,0,1,0],[0,0,0,1]]}]}]})", "render scene.json", "/objects/0/transform: transform is singular"},
+    BadRun{"missing scene file", "", "render nowhere.json", "nowhere.json: cannot open scene file"},
+    BadRun{"scene is a directory", "", "render .", ".: is a directory"},
+    BadRun{"bad size", "", "render --size 64by48", "--size 64by48: expected WIDTHxHEIGHT"},
+    BadRun{"size too large", "", "render --size 99999x10", "each side must be 1 to 16384"},
+    BadRun{"negative depth", "", "render --max-depth -1", "--max-depth"},
+    BadRun{"depth beyond limit", "", "render --max-depth 1000000000", "--max-depth"},
+    BadRun{"reflectivity out of range", "", "render --min-reflectivity 1.5", "--min-reflectivity"},
+    BadRun{"zero threads", "", "render --threads 0", "--threads"},
+    BadRun{"unknown flag", "", "render --fast", "--fast"},
+    BadRun{"unknown mode", "", "render --mode magic", "--mode"},
+    BadRun{"hybrid before the item buffer", "", "render --mode hybrid", "--mode hybrid needs the item buffer"},
+    BadRun{"stats into a missing directory", "", "render --stats no/dir/s.json", "--stats no/dir/s.json: directory no/dir does not exist"}
+), [](const auto& info) { return testing::test_name(info.param.what); });
+// clang-format on
+
+TEST(Cli, OutputIntoAMissingDirectoryOrNotPngIsAnError) {
+    const fs::path dir = fresh_dir();
+    Outcome r = glint(dir, "render -o missing/dir/a.png");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("-o missing/dir/a.png: directory missing/dir does not exist"),
+              std::string::npos)
+        << r.err;
+    r = glint(dir, "render -o a.jpg");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("glint writes PNG files"), std::string::npos) << r.err;
+}
+
+TEST(Cli, AnOutputThatCannotBeWrittenIsARuntimeError) {
+    // /proc accepts no new files, even from root (CI runs as root, so a read-only directory
+    // would not do).
+    const fs::path dir = fresh_dir();
+    const Outcome r = glint(dir, "render --size 8x6 -o /proc/glint-test.png");
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_NE(r.err.find("cannot write /proc/glint-test.png"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists("/proc/glint-test.png"));
+}
+
+TEST(Cli, HelpAndVersionExitZero) {
+    const fs::path dir = fresh_dir();
+    EXPECT_EQ(glint(dir, "--help").exit_code, 0);
+    EXPECT_EQ(glint(dir, "render --help").exit_code, 0);
+    EXPECT_EQ(glint(dir, "--version").exit_code, 0);
+    EXPECT_EQ(glint(dir, "").exit_code, 2);
+}
+
+} // namespace
+} // namespace glint
