@@ -1,4 +1,4 @@
-// `glint render` and `glint info`.
+// `glint render`: load, prepare, trace, write; every failure becomes a one-line message.
 #include "app/commands.h"
 #include "app/progress.h"
 
@@ -8,7 +8,6 @@
 
 #include <nlohmann/json.hpp>
 #include <tbb/task_arena.h>
-#include <tbb/version.h>
 
 #include <chrono>
 #include <cstdio>
@@ -182,17 +181,6 @@ Command add_render_command(CLI::App& app) {
         ->check(CLI::Range(1, 1024));
     cmd->add_option("--stats", args->stats, "Also write timings and ray counts as JSON here");
     return {cmd, [args] { return guarded([&] { return run_render(*args); }); }};
-}
-
-Command add_info_command(CLI::App& app) {
-    CLI::App* cmd = app.add_subcommand("info", "Show version, build and threading facts");
-    return {cmd, [] {
-                std::printf("glint %s (%s build)\n", GLINT_VERSION, GLINT_BUILD_TYPE);
-                std::printf("threads: %d (oneTBB %d.%d)\n", tbb::this_task_arena::max_concurrency(),
-                            TBB_VERSION_MAJOR, TBB_VERSION_MINOR);
-                std::printf("OpenGL: not built yet (the item buffer is a separate issue)\n");
-                return 0;
-            }};
 }
 
 } // namespace glint

@@ -99,6 +99,8 @@ INSTANTIATE_TEST_SUITE_P(EveryClass, BadSceneTest, ::testing::Values(
     BadScene{"fov out of range", R"({"camera": {"fov_y": 180}})", "/camera/fov_y: must be an angle in degrees strictly between 0 and 180"},
     BadScene{"width out of range", R"({"camera": {"width": 0}})", "/camera/width: must be between 1 and 16384, got 0"},
     BadScene{"fractional height", R"({"camera": {"height": 10.5}})", "/camera/height: must be a whole number"},
+    BadScene{"camera beyond float's comfort", R"({"camera": {"eye": [1e300, 0, 0]}})", "/camera/eye/0: coordinates must be within ±1e15"},
+    BadScene{"light beyond float's comfort", R"({"lights": [{"position": [0, -2e15, 0]}]})", "/lights/0/position/1: coordinates must be within ±1e15"},
     BadScene{"eye on look_at", R"({"camera": {"eye": [1, 1, 1], "look_at": [1, 1, 1]}})", "/camera: eye and look_at must differ"},
     BadScene{"up along view", R"({"camera": {"eye": [0, 5, 0], "look_at": [0, 0, 0]}})", "/camera: up is parallel to the viewing direction"},
     BadScene{"reflectivity above 1", R"({"materials": {"m": {"reflectivity": 1.5}}})", "/materials/m/reflectivity: must be between 0 and 1, got 1.5"},

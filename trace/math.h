@@ -15,6 +15,10 @@ using DMat4 = glm::dmat4;
 
 inline constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
+// Largest coordinate or transform entry a scene may use: squares of differences must still be
+// finite in float (3.4e38) with room to spare.
+inline constexpr double kMaxCoordinate = 1e15;
+
 // Unit roundoff of float (2^-24): one rounded operation has relative error at most this.
 inline constexpr float kUnitRoundoff = 0.5f * std::numeric_limits<float>::epsilon();
 

@@ -133,6 +133,15 @@ class Loader {
         return {number(node[0]), number(node[1]), number(node[2])};
     }
 
+    // A position: within ±kMaxCoordinate, so that differences and their squares stay finite.
+    DVec3 point(const Node& node) const {
+        const DVec3 p = vec3(node);
+        for (int i = 0; i < 3; ++i)
+            if (std::abs(p[i]) > kMaxCoordinate)
+                fail(node[static_cast<std::size_t>(i)], "coordinates must be within ±1e15");
+        return p;
+    }
+
     Vec3 colour(const Node& node) const {
         const DVec3 c = vec3(node);
         for (int i = 0; i < 3; ++i)
@@ -144,9 +153,9 @@ class Loader {
     Camera camera(const Node& node) const {
         expect_object(node, {"eye", "look_at", "up", "fov_y", "width", "height"});
         Camera c;
-        if (has(node, "eye")) c.eye = vec3(node.child("eye"));
-        if (has(node, "look_at")) c.look_at = vec3(node.child("look_at"));
-        if (has(node, "up")) c.up = vec3(node.child("up"));
+        if (has(node, "eye")) c.eye = point(node.child("eye"));
+        if (has(node, "look_at")) c.look_at = point(node.child("look_at"));
+        if (has(node, "up")) c.up = point(node.child("up"));
         if (has(node, "fov_y")) {
             c.fov_y = number(node.child("fov_y"));
             if (!(c.fov_y > 0 && c.fov_y < 180))
@@ -171,7 +180,7 @@ class Loader {
                  "unknown light type '" + string(node.child("type")) + "' (glint has: point)");
         if (!has(node, "position")) fail(node, "a light needs a position");
         PointLight l;
-        l.position = vec3(node.child("position"));
+        l.position = point(node.child("position"));
         if (has(node, "color")) l.color = colour(node.child("color"));
         return l;
     }
@@ -265,9 +274,7 @@ class Loader {
             fail(vertices, "has " + std::to_string(vertices.value.size()) +
                                " vertices; the limit is " + std::to_string(kMaxMeshVertices));
         for (std::size_t i = 0; i < vertices.value.size(); ++i) {
-            const DVec3 v = vec3(vertices[i]);
-            if (glm::any(glm::greaterThan(glm::abs(v), DVec3(1e15))))
-                fail(vertices[i], "coordinates must be within ±1e15");
+            const DVec3 v = point(vertices[i]);
             mesh.vertices.push_back(Vec3(v));
             mesh.bounds.extend(mesh.vertices.back());
         }

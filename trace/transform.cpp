@@ -35,9 +35,6 @@ std::string format_double(double value) {
     return text;
 }
 
-// Largest float magnitude a transform entry may have: squares of coordinates must still fit.
-constexpr double kMaxEntry = 1e15;
-
 } // namespace
 
 std::optional<std::string> why_unusable(const DMat4& m) {
@@ -49,9 +46,9 @@ std::optional<std::string> why_unusable(const DMat4& m) {
         return "transform is not affine (last row must be [0, 0, 0, 1])";
     for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 3; ++r)
-            if (std::abs(m[c][r]) > kMaxEntry)
+            if (std::abs(m[c][r]) > kMaxCoordinate)
                 return "transform entry " + format_double(m[c][r]) + " is beyond " +
-                       format_double(kMaxEntry) + ", too large for float";
+                       format_double(kMaxCoordinate) + ", too large for float";
     const glm::dmat3 linear(m);
     const double det = glm::determinant(linear);
     if (det == 0 || !std::isfinite(det)) return "transform is singular (determinant 0)";
@@ -61,7 +58,7 @@ std::optional<std::string> why_unusable(const DMat4& m) {
         const double norm =
             std::sqrt(inverse[0][r] * inverse[0][r] + inverse[1][r] * inverse[1][r] +
                       inverse[2][r] * inverse[2][r]);
-        if (norm < 1 / kMaxEntry || norm > kMaxEntry)
+        if (norm < 1 / kMaxCoordinate || norm > kMaxCoordinate)
             return "transform scales by " + format_double(1 / norm) +
                    ", outside what float can invert (1e-15 to 1e15)";
         for (int c = 0; c < 3; ++c) inverse[c][r] /= norm;
