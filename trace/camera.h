@@ -26,6 +26,9 @@ class PinholeCamera {
         return {Vec3(0.0f), glm::normalize(forward_ + x * right_ + y * up_)};
     }
 
+    Vec3 forward() const { return forward_; }    // unit
+    Vec3 right_scaled() const { return right_; } // right · tan(fov_y/2) · aspect
+    Vec3 up_scaled() const { return up_; }       // up' · tan(fov_y/2)
     int width() const { return width_; }
     int height() const { return height_; }
 

@@ -1,28 +1,23 @@
-// The render loop: primary rays through every pixel centre, in 2D tiles, in parallel (oneTBB).
-// Every pixel is computed independently, so the image is byte-identical for any thread count.
+// The frame's last phase: shade every pixel from its primary hit (found by ray or from the item
+// buffer, trace/primary_hits.h), in parallel tiles; byte-identical for any thread count.
 #pragma once
 
 #include "trace/image.h"
+#include "trace/primary_hits.h"
 #include "trace/shading.h"
 
-#include <atomic>
-
 namespace glint {
-
-inline constexpr int kTileSize = 32;
-
-struct RenderOptions {
-    int threads = 0;                        // 0: all cores
-    std::atomic<int>* tiles_done = nullptr; // progress, counted as tiles finish
-};
 
 struct RenderResult {
     Image image;
     RayCounts rays;
 };
 
-int tile_count(int width, int height);
+// Shades the pixels whose primary hits are given (row-major, top row first).
+RenderResult shade_image(const World& world, const std::vector<Hit>& primary,
+                         const TileProgress& progress = {});
 
-RenderResult render(const World& world, const RenderOptions& options = {});
+// Ray mode in one call: primary hits by ray casting, then shading.
+RenderResult render(const World& world, const TileProgress& progress = {});
 
 } // namespace glint

@@ -41,9 +41,4 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, int depth, float 
     return colour;
 }
 
-Vec3 trace_primary(const World& world, const Ray& ray, RayCounts& counts) {
-    ++counts.primary;
-    return shade(world, ray, world.intersect(ray), 0, 1.0f, counts);
-}
-
 } // namespace glint

@@ -23,7 +23,4 @@ struct RayCounts {
 Vec3 shade(const World& world, const Ray& ray, const Hit& hit, int depth, float weight,
            RayCounts& counts);
 
-// Casts a primary ray and shades what it hits.
-Vec3 trace_primary(const World& world, const Ray& ray, RayCounts& counts);
-
 } // namespace glint

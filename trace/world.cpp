@@ -104,13 +104,21 @@ Hit World::intersect(const Ray& ray, float t_max) const {
     return best;
 }
 
-bool World::occluded(const Ray& ray, float t_max) const {
+bool World::occluded(const Ray& ray, float t_max, std::uint32_t skip) const {
     const Vec3 inverse_direction = 1.0f / ray.direction;
-    for (const Object& object : objects_) {
-        if (object.bounded && !hits_bounds(object.bounds, ray, inverse_direction, t_max)) continue;
+    for (std::uint32_t i = 0; i < objects_.size(); ++i) {
+        const Object& object = objects_[i];
+        if (i == skip ||
+            (object.bounded && !hits_bounds(object.bounds, ray, inverse_direction, t_max)))
+            continue;
         if (intersect_object(object, ray, t_max).found()) return true;
     }
     return false;
+}
+
+Hit World::intersect_one(std::uint32_t object, const Ray& ray, float t_max) const {
+    const ShapeHit h = intersect_object(objects_[object], ray, t_max);
+    return h.found() ? Hit{h.t, object, h.part} : Hit{};
 }
 
 SurfacePoint World::surface(const Ray& ray, const Hit& hit) const {

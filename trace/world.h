@@ -39,12 +39,15 @@ class World {
 
     // The closest hit in (0, t_max); ties go to the lower object index.
     Hit intersect(const Ray& ray, float t_max = kInfinity) const;
-    // Whether anything is hit in (0, t_max).
-    bool occluded(const Ray& ray, float t_max) const;
+    // Whether anything other than object `skip` is hit in (0, t_max).
+    bool occluded(const Ray& ray, float t_max, std::uint32_t skip = kNoObject) const;
+    // The first hit on one object alone, in (0, t_max).
+    Hit intersect_one(std::uint32_t object, const Ray& ray, float t_max = kInfinity) const;
     SurfacePoint surface(const Ray& ray, const Hit& hit) const;
 
     const PinholeCamera& camera() const { return camera_; }
     const std::vector<Object>& objects() const { return objects_; }
+    const Mesh& mesh(std::uint32_t index) const { return meshes_[index]; }
     const std::vector<Light>& lights() const { return lights_; }
     const Material& material(std::uint32_t object) const {
         return materials_[objects_[object].material];

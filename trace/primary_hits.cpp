@@ -1,0 +1,75 @@
+#include "trace/primary_hits.h"
+
+#include <mutex>
+
+namespace glint {
+
+std::vector<Hit> primary_hits_by_ray(const World& world, const TileProgress& progress) {
+    const PinholeCamera& camera = world.camera();
+    std::vector<Hit> hits(static_cast<std::size_t>(camera.width()) * camera.height());
+    for_each_tile(camera.width(), camera.height(), progress, [&](int x0, int y0, int x1, int y1) {
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x)
+                hits[static_cast<std::size_t>(y) * camera.width() + x] =
+                    world.intersect(camera.ray(x, y));
+    });
+    return hits;
+}
+
+// The exact-mode argument. The id image comes from surfaces that enclose each object's true
+// surface (conservative tessellation, or exact proxies), so along a pixel's ray every object's
+// true hit lies at or beyond its rasterized hit, and the depth test kept the nearest rasterized
+// hit, at distance t_r. Hence no object's true surface lies before t_r, and the named object's
+// true hit t_k ≥ t_r. Any other object that is really first must therefore be hit in [t_r, t_k):
+// one any-hit query over that interval (excluding the named object) decides, and only when it
+// finds something is the pixel traced in full. t_r comes from a float depth buffer, so the
+// interval starts a relative 1e-3 earlier: far beyond the depth's rounding, and costing only a
+// slightly longer query, since anything found must still lie before t_k.
+constexpr float kDepthSlack = 1e-3f;
+
+std::vector<Hit> primary_hits_from_ids(const World& world, const IdImage& ids, Resolve resolve,
+                                       PrimaryStats& stats, const TileProgress& progress) {
+    const PinholeCamera& camera = world.camera();
+    const int width = camera.width();
+    std::vector<Hit> hits(static_cast<std::size_t>(width) * camera.height());
+    std::mutex stats_mutex;
+    for_each_tile(width, camera.height(), progress, [&](int x0, int y0, int x1, int y1) {
+        PrimaryStats local;
+        for (int y = y0; y < y1; ++y) {
+            for (int x = x0; x < x1; ++x) {
+                const std::size_t p = static_cast<std::size_t>(y) * width + x;
+                if (ids.ids[p] == 0)
+                    continue; // nothing drawn: enclosing surfaces cover every true one
+                const std::uint32_t object = ids.ids[p] - 1;
+                const Ray ray = camera.ray(x, y);
+                ++local.exact_intersections;
+                Hit hit = world.intersect_one(object, ray);
+                if (!hit.found()) { // inside the enclosing surface but outside the true one
+                    ++local.fallbacks;
+                    hits[p] = world.intersect(ray);
+                    continue;
+                }
+                if (resolve == Resolve::exact) {
+                    const float t_raster =
+                        ids.view_depth[p] / glm::dot(ray.direction, camera.forward());
+                    const float t_start = glm::max(0.0f, t_raster * (1 - kDepthSlack));
+                    if (t_start < hit.t &&
+                        world.occluded({ray.origin + t_start * ray.direction, ray.direction},
+                                       hit.t - t_start, object)) {
+                        // Traced in full from the eye, so the hit is exactly ray mode's.
+                        const Hit nearer = world.intersect(ray, hit.t);
+                        if (nearer.found()) ++local.corrected, hit = nearer;
+                    }
+                }
+                hits[p] = hit;
+            }
+        }
+        const std::lock_guard lock(stats_mutex);
+        stats.exact_intersections += local.exact_intersections;
+        stats.fallbacks += local.fallbacks;
+        stats.corrected += local.corrected;
+    });
+    return hits;
+}
+
+} // namespace glint

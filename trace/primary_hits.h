@@ -1,0 +1,38 @@
+// Primary visibility (DESIGN.md §2, step 3): which object each pixel's camera ray hits first.
+// Two sources, one result: cast every camera ray, or start from an id image rasterized
+// elsewhere (the item buffer) and intersect each pixel's ray exactly with the object it names.
+// trace/ only sees the id image; how it was made is raster/'s business.
+#pragma once
+
+#include "trace/tiles.h"
+#include "trace/world.h"
+
+#include <vector>
+
+namespace glint {
+
+// Per pixel, row-major, top row first.
+struct IdImage {
+    int width = 0, height = 0;
+    std::vector<std::uint32_t> ids; // object index + 1; 0 where nothing was drawn
+    std::vector<float> view_depth;  // distance along the camera's forward axis of what was drawn
+};
+
+// How far to trust the id image: `exact` checks that nothing lies in front of the exact hit on
+// the named object within the interval the rasterized surface leaves uncertain; `trust` does not.
+enum class Resolve { exact, trust };
+
+struct PrimaryStats {
+    std::uint64_t exact_intersections = 0; // pixels resolved by intersecting one named object
+    std::uint64_t fallbacks = 0; // the named object was missed: the pixel was fully traced
+    std::uint64_t corrected = 0; // exact mode found a nearer object than the named one
+};
+
+// Casts the camera ray of every pixel.
+std::vector<Hit> primary_hits_by_ray(const World& world, const TileProgress& progress = {});
+
+// Resolves every pixel from `ids` (same size as the camera's image).
+std::vector<Hit> primary_hits_from_ids(const World& world, const IdImage& ids, Resolve resolve,
+                                       PrimaryStats& stats, const TileProgress& progress = {});
+
+} // namespace glint
