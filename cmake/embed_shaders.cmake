@@ -1,0 +1,18 @@
+# Writes OUTPUT, a header holding every GLSL file in SOURCES as a string constant named after
+# the file (item_mesh.vert -> kItemMeshVert). Run by raster/CMakeLists.txt at build time.
+set(text "// Generated from shaders/ by cmake/embed_shaders.cmake; do not edit.\n#pragma once\n\nnamespace glint::shaders {\n")
+foreach(source IN LISTS SOURCES)
+  get_filename_component(name "${source}" NAME)
+  string(REGEX REPLACE "[^A-Za-z0-9]+" ";" words "${name}")
+  set(identifier "k")
+  foreach(word IN LISTS words)
+    string(SUBSTRING "${word}" 0 1 first)
+    string(TOUPPER "${first}" first)
+    string(SUBSTRING "${word}" 1 -1 rest)
+    string(APPEND identifier "${first}${rest}")
+  endforeach()
+  file(READ "${source}" body)
+  string(APPEND text "\ninline constexpr const char* ${identifier} = R\"glsl(${body})glsl\";\n")
+endforeach()
+string(APPEND text "\n} // namespace glint::shaders\n")
+file(WRITE "${OUTPUT}" "${text}")

@@ -1,0 +1,69 @@
+// EGL with no display (EGL_MESA_platform_surfaceless): the same Mesa llvmpipe here, a GPU's
+// driver elsewhere, and the way glint keeps working once OSMesa is gone (Mesa 25.1+).
+#include "raster/gl_context.h"
+
+#include <glad/gl.h>
+
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+
+namespace glint {
+namespace {
+
+class EglContext final : public GlContext {
+  public:
+    EglContext() {
+        const auto get_platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
+            eglGetProcAddress("eglGetPlatformDisplayEXT"));
+        if (!get_platform_display) throw GlError("EGL lacks eglGetPlatformDisplayEXT");
+        display_ =
+            get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+        EGLint major = 0, minor = 0;
+        if (display_ == EGL_NO_DISPLAY || !eglInitialize(display_, &major, &minor))
+            throw GlError(
+                "EGL could not open a surfaceless display (Mesa's EGL_MESA_platform_surfaceless)");
+        // Desktop GL finds no EGLConfig here, so the context is made without one
+        // (EGL_KHR_no_config_context) and renders only into framebuffer objects.
+        const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                     3,
+                                     EGL_CONTEXT_MINOR_VERSION,
+                                     3,
+                                     EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                     EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                     EGL_NONE};
+        if (!eglBindAPI(EGL_OPENGL_API) ||
+            (context_ = eglCreateContext(display_, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT,
+                                         attributes)) == EGL_NO_CONTEXT ||
+            !eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) {
+            release();
+            throw GlError("EGL could not create an OpenGL 3.3 core context");
+        }
+        try {
+            load_functions(reinterpret_cast<void* (*)(const char*)>(eglGetProcAddress));
+        } catch (...) {
+            release();
+            throw;
+        }
+    }
+    ~EglContext() override { release(); }
+
+  private:
+    void release() {
+        if (context_ != EGL_NO_CONTEXT) {
+            eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+            eglDestroyContext(display_, context_);
+        }
+        eglTerminate(display_);
+    }
+
+    EGLDisplay display_ = EGL_NO_DISPLAY;
+    EGLContext context_ = EGL_NO_CONTEXT;
+};
+
+} // namespace
+
+std::unique_ptr<GlContext> make_egl_context() {
+    return std::make_unique<EglContext>();
+}
+
+} // namespace glint

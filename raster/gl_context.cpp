@@ -1,0 +1,32 @@
+#include "raster/gl_context.h"
+
+#include <glad/gl.h>
+
+namespace glint {
+
+std::unique_ptr<GlContext> make_osmesa_context();
+std::unique_ptr<GlContext> make_egl_context();
+
+std::string_view backend_name(GlBackend backend) {
+    return backend == GlBackend::osmesa ? "osmesa" : "egl";
+}
+
+void GlContext::load_functions(void* (*get_proc)(const char*)) {
+    // One glad table serves whichever context is current: reload whenever one is made current.
+    const int version = gladLoadGL(reinterpret_cast<GLADloadfunc>(get_proc));
+    if (version == 0) throw GlError("could not load OpenGL functions");
+    if (GLAD_VERSION_MAJOR(version) * 10 + GLAD_VERSION_MINOR(version) < 33)
+        throw GlError("OpenGL 3.3 core is needed, the context offers " +
+                      std::to_string(GLAD_VERSION_MAJOR(version)) + "." +
+                      std::to_string(GLAD_VERSION_MINOR(version)));
+    if (!GLAD_GL_ARB_clip_control)
+        throw GlError("the GL context lacks ARB_clip_control (needed for reverse-Z depth)");
+    renderer_ = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    version_ = reinterpret_cast<const char*>(glGetString(GL_VERSION));
+}
+
+std::unique_ptr<GlContext> make_context(GlBackend backend) {
+    return backend == GlBackend::osmesa ? make_osmesa_context() : make_egl_context();
+}
+
+} // namespace glint

@@ -1,0 +1,347 @@
+#include "raster/item_buffer.h"
+
+#include "raster/gl_context.h"
+#include "raster/tessellation.h"
+
+#include <glad/gl.h>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <shaders.h>
+
+#include <algorithm>
+#include <map>
+
+namespace glint {
+
+std::string_view raster_mode_name(RasterMode mode) {
+    return mode == RasterMode::mesh ? "mesh" : "proxy";
+}
+
+namespace {
+
+GLuint compile(GLenum kind, const char* source) {
+    const GLuint shader = glCreateShader(kind);
+    glShaderSource(shader, 1, &source, nullptr);
+    glCompileShader(shader);
+    GLint ok = 0;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[2048];
+        glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+        glDeleteShader(shader);
+        throw GlError(std::string("shader compilation failed: ") + log);
+    }
+    return shader;
+}
+
+GLuint link(const char* vertex, const char* fragment) {
+    const GLuint v = compile(GL_VERTEX_SHADER, vertex), f = compile(GL_FRAGMENT_SHADER, fragment);
+    const GLuint program = glCreateProgram();
+    glAttachShader(program, v);
+    glAttachShader(program, f);
+    glLinkProgram(program);
+    glDeleteShader(v);
+    glDeleteShader(f);
+    GLint ok = 0;
+    glGetProgramiv(program, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[2048];
+        glGetProgramInfoLog(program, sizeof log, nullptr, log);
+        throw GlError(std::string("shader linking failed: ") + log);
+    }
+    return program;
+}
+
+// Clip coordinates of a camera-relative point p, matching PinholeCamera exactly: p lies on the
+// ray of NDC (x, y) when p ∝ forward + x·R + y·U, so x = (p·R)/(|R|²·(p·forward)), and likewise
+// y. Reverse-Z with an infinite far plane: z_clip = near, w_clip = p·forward, so the depth
+// near / view depth keeps float's relative precision at every distance.
+glm::dmat4 projection(const PinholeCamera& camera, double near) {
+    const DVec3 r(camera.right_scaled()), u(camera.up_scaled()), f(camera.forward());
+    glm::dmat4 p(0.0); // glm: p[column][row]
+    for (int c = 0; c < 3; ++c) {
+        p[c][0] = r[c] / glm::dot(r, r);
+        p[c][1] = u[c] / glm::dot(u, u);
+        p[c][3] = f[c];
+    }
+    p[3][2] = near;
+    return p;
+}
+
+glm::dmat4 to_mat4(const Mat3& linear, Vec3 offset) {
+    glm::dmat4 m{glm::dmat3(linear)};
+    m[3] = glm::dvec4(DVec3(offset), 1.0);
+    return m;
+}
+
+} // namespace
+
+struct ItemBuffer::Impl {
+    struct Geometry {
+        GLuint vao = 0, vertices = 0, indices = 0;
+        GLsizei index_count = 0;
+    };
+    struct DrawItem {
+        std::uint32_t object;
+        std::size_t geometry; // index into geometries; unused for full-screen items
+        bool proxy;           // intersect in the fragment shader
+        bool full_screen;     // planes: no geometry at all
+    };
+
+    GLuint mesh_program = 0, proxy_program = 0, empty_vao = 0;
+    GLuint framebuffer = 0, colour = 0, depth = 0;
+    int width = 0, height = 0;
+    std::vector<Geometry> geometries;
+    std::vector<DrawItem> items;
+
+    ~Impl() {
+        for (const Geometry& g : geometries) release(g);
+        glDeleteProgram(mesh_program);
+        glDeleteProgram(proxy_program);
+        glDeleteVertexArrays(1, &empty_vao);
+        glDeleteFramebuffers(1, &framebuffer);
+        glDeleteRenderbuffers(1, &colour);
+        glDeleteRenderbuffers(1, &depth);
+    }
+
+    static void release(const Geometry& g) {
+        glDeleteVertexArrays(1, &g.vao);
+        glDeleteBuffers(1, &g.vertices);
+        glDeleteBuffers(1, &g.indices);
+    }
+
+    std::size_t add_geometry(const std::vector<Vec3>& vertices,
+                             const std::vector<glm::uvec3>& triangles) {
+        Geometry g;
+        glGenVertexArrays(1, &g.vao);
+        glBindVertexArray(g.vao);
+        glGenBuffers(1, &g.vertices);
+        glBindBuffer(GL_ARRAY_BUFFER, g.vertices);
+        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(Vec3)),
+                     vertices.data(), GL_STATIC_DRAW);
+        glEnableVertexAttribArray(0);
+        glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3), nullptr);
+        glGenBuffers(1, &g.indices);
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g.indices);
+        glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+                     static_cast<GLsizeiptr>(triangles.size() * sizeof(glm::uvec3)),
+                     triangles.data(), GL_STATIC_DRAW);
+        g.index_count = static_cast<GLsizei>(triangles.size() * 3);
+        glBindVertexArray(0);
+        geometries.push_back(g);
+        return geometries.size() - 1;
+    }
+
+    void resize(int w, int h) {
+        if (w == width && h == height) return;
+        width = w, height = h;
+        if (!framebuffer) {
+            glGenFramebuffers(1, &framebuffer);
+            glGenRenderbuffers(1, &colour);
+            glGenRenderbuffers(1, &depth);
+        }
+        glBindRenderbuffer(GL_RENDERBUFFER, colour);
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_RG32UI, w, h);
+        glBindRenderbuffer(GL_RENDERBUFFER, depth);
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, w, h);
+        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+        if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+            throw GlError(
+                "the item buffer's framebuffer (RG32UI + 32-bit float depth) is incomplete");
+    }
+
+    // Clears ids to 0 and depth to 0 (reverse-Z: larger is nearer) and sets the pass's state.
+    void begin(int w, int h) {
+        resize(w, h);
+        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+        glViewport(0, 0, w, h);
+        glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_GREATER);
+        glDisable(GL_CULL_FACE); // cameras may sit inside objects; proxies draw both sides alike
+        const GLuint zero_ids[4] = {0, 0, 0, 0};
+        const GLfloat far_depth = 0.0f;
+        glClearBufferuiv(GL_COLOR, 0, zero_ids);
+        glClearBufferfv(GL_DEPTH, 0, &far_depth);
+    }
+
+    ItemBufferResult read_back(float near) {
+        glFinish();
+        std::vector<std::uint32_t> rg(static_cast<std::size_t>(width) * height * 2);
+        std::vector<float> depths(static_cast<std::size_t>(width) * height);
+        glPixelStorei(GL_PACK_ALIGNMENT, 4);
+        glReadBuffer(GL_COLOR_ATTACHMENT0);
+        glReadPixels(0, 0, width, height, GL_RG_INTEGER, GL_UNSIGNED_INT, rg.data());
+        glReadPixels(0, 0, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, depths.data());
+        if (const GLenum error = glGetError(); error != GL_NO_ERROR)
+            throw GlError("OpenGL error " + std::to_string(error) + " in the item-buffer pass");
+        ItemBufferResult result;
+        result.ids.width = width, result.ids.height = height;
+        result.ids.ids.resize(depths.size());
+        result.ids.view_depth.resize(depths.size());
+        result.primitives.resize(depths.size());
+        for (int y = 0; y < height; ++y) {
+            const std::size_t from =
+                static_cast<std::size_t>(height - 1 - y) * width; // GL's row 0 is the bottom
+            const std::size_t to = static_cast<std::size_t>(y) * width;
+            for (int x = 0; x < width; ++x) {
+                result.ids.ids[to + x] = rg[2 * (from + x)];
+                result.primitives[to + x] = rg[2 * (from + x) + 1];
+                const float d = depths[from + x];
+                result.ids.view_depth[to + x] = d > 0 ? near / d : kInfinity;
+            }
+        }
+        return result;
+    }
+};
+
+ItemBuffer::ItemBuffer() : impl_(std::make_unique<Impl>()) {
+    impl_->mesh_program = link(shaders::kItemVert, shaders::kItemMeshFrag);
+    impl_->proxy_program = link(shaders::kItemVert, shaders::kItemProxyFrag);
+    glGenVertexArrays(1,
+                      &impl_->empty_vao); // core profile draws need a VAO even with no attributes
+}
+
+ItemBuffer::~ItemBuffer() = default;
+
+void ItemBuffer::upload(const World& world, RasterMode mode, int tessellation) {
+    Impl& gl = *impl_;
+    for (const auto& g : gl.geometries) Impl::release(g);
+    gl.geometries.clear();
+    gl.items.clear();
+    deviations_.assign(world.objects().size(), 0.0f);
+    // One tessellation per distinct shape (cones: per top radius), shared by every object using it.
+    std::map<std::pair<ShapeKind, float>, std::pair<std::size_t, float>> shared;
+    for (std::uint32_t i = 0; i < world.objects().size(); ++i) {
+        const Object& o = world.objects()[i];
+        if (o.shape == ShapeKind::plane) {
+            gl.items.push_back({i, 0, true, true});
+            continue;
+        }
+        if (o.shape == ShapeKind::triangle || o.shape == ShapeKind::mesh) {
+            const Mesh& mesh = world.mesh(o.mesh);
+            gl.items.push_back({i, gl.add_geometry(mesh.vertices, mesh.triangles), false, false});
+            continue;
+        }
+        if (mode == RasterMode::proxy) {
+            // The primitive's object-space bounds as a box (a disk gets a thin one).
+            const float r = o.shape == ShapeKind::cone ? std::max(1.0f, o.top_radius) : 1.0f;
+            const Vec3 lo = o.shape == ShapeKind::sphere || o.shape == ShapeKind::box ? Vec3(-1.0f)
+                            : o.shape == ShapeKind::disk ? Vec3(-1.0f, -0.01f, -1.0f)
+                                                         : Vec3(-r, 0.0f, -r);
+            const Vec3 hi = o.shape == ShapeKind::disk ? Vec3(1.0f, 0.01f, 1.0f) : Vec3(r, 1.0f, r);
+            const auto key = std::make_pair(
+                ShapeKind::box, o.shape == ShapeKind::box ? -1.0f : float(o.shape) * 1e3f + r);
+            auto it = shared.find(key);
+            if (it == shared.end()) {
+                Tessellation box = tessellate(ShapeKind::box, 0, 4);
+                for (Vec3& v : box.vertices) v = lo + (v + 1.0f) * 0.5f * (hi - lo);
+                it = shared
+                         .emplace(key, std::make_pair(gl.add_geometry(box.vertices, box.triangles),
+                                                      0.0f))
+                         .first;
+            }
+            gl.items.push_back({i, it->second.first, true, false});
+            continue;
+        }
+        const auto key = std::make_pair(o.shape, o.shape == ShapeKind::cone ? o.top_radius : 0.0f);
+        auto it = shared.find(key);
+        if (it == shared.end()) {
+            const Tessellation t = tessellate(o.shape, o.top_radius, tessellation);
+            it = shared
+                     .emplace(key, std::make_pair(gl.add_geometry(t.vertices, t.triangles),
+                                                  t.max_deviation))
+                     .first;
+        }
+        gl.items.push_back({i, it->second.first, false, false});
+        // World-space bound: object deviation times ‖L‖_F ≥ ‖L‖₂, the most L stretches a length.
+        const Mat3& l = o.transform.linear;
+        const float stretch =
+            std::sqrt(glm::dot(l[0], l[0]) + glm::dot(l[1], l[1]) + glm::dot(l[2], l[2]));
+        deviations_[i] = it->second.second * stretch;
+    }
+}
+
+namespace {
+
+// Near plane: a millionth of the scene's extent. Reverse-Z float depth keeps its relative
+// precision at any distance, so only objects closer than that to the eye would be lost.
+float near_plane(const World& world) {
+    float extent = 1.0f;
+    for (const Object& o : world.objects())
+        if (o.bounded)
+            extent = std::max({extent, max_component(glm::abs(o.bounds.lo)),
+                               max_component(glm::abs(o.bounds.hi))});
+    return extent * 1e-6f;
+}
+
+} // namespace
+
+ItemBufferResult ItemBuffer::draw(const World& world) {
+    Impl& gl = *impl_;
+    const PinholeCamera& camera = world.camera();
+    const float near = near_plane(world);
+    const glm::dmat4 clip = projection(camera, near);
+    gl.begin(camera.width(), camera.height());
+    for (const Impl::DrawItem& item : gl.items) {
+        const Object& o = world.objects()[item.object];
+        const GLuint program = item.proxy ? gl.proxy_program : gl.mesh_program;
+        glUseProgram(program);
+        const auto uniform = [&](const char* name) { return glGetUniformLocation(program, name); };
+        const glm::mat4 mvp(clip * to_mat4(o.transform.linear, o.transform.offset));
+        glUniformMatrix4fv(uniform("model_view_projection"), 1, GL_FALSE, glm::value_ptr(mvp));
+        glUniform1i(uniform("full_screen"), item.full_screen);
+        glUniform1ui(uniform("object_id"), item.object + 1);
+        if (item.proxy) {
+            const glm::mat4 inverse(
+                to_mat4(o.transform.inverse_linear, o.transform.inverse_offset));
+            glUniformMatrix4fv(uniform("world_to_object"), 1, GL_FALSE, glm::value_ptr(inverse));
+            glUniform1i(uniform("shape"), static_cast<int>(o.shape));
+            glUniform1f(uniform("top_radius"), o.top_radius);
+            glUniform3fv(uniform("forward"), 1, glm::value_ptr(camera.forward()));
+            const Vec3 right = camera.right_scaled(), up = camera.up_scaled();
+            glUniform3fv(uniform("right_scaled"), 1, glm::value_ptr(right));
+            glUniform3fv(uniform("up_scaled"), 1, glm::value_ptr(up));
+            glUniform2f(uniform("viewport"), static_cast<float>(camera.width()),
+                        static_cast<float>(camera.height()));
+            glUniform1f(uniform("near"), near);
+        } else {
+            glUniform1ui(uniform("primitive_base"), 0);
+        }
+        if (item.full_screen) {
+            glBindVertexArray(gl.empty_vao);
+            glDrawArrays(GL_TRIANGLES, 0, 3);
+        } else {
+            const Impl::Geometry& g = gl.geometries[item.geometry];
+            glBindVertexArray(g.vao);
+            glDrawElements(GL_TRIANGLES, g.index_count, GL_UNSIGNED_INT, nullptr);
+        }
+    }
+    glBindVertexArray(0);
+    return gl.read_back(near);
+}
+
+ItemBufferResult ItemBuffer::draw_triangle_for_test(const World& world, const Vec3 (&corners)[3],
+                                                    std::uint32_t object_id,
+                                                    std::uint32_t primitive_base) {
+    Impl& gl = *impl_;
+    const PinholeCamera& camera = world.camera();
+    const float near = near_plane(world);
+    const std::size_t geometry = gl.add_geometry({corners[0], corners[1], corners[2]}, {{0, 1, 2}});
+    gl.begin(camera.width(), camera.height());
+    glUseProgram(gl.mesh_program);
+    const glm::mat4 mvp(projection(camera, near));
+    glUniformMatrix4fv(glGetUniformLocation(gl.mesh_program, "model_view_projection"), 1, GL_FALSE,
+                       glm::value_ptr(mvp));
+    glUniform1i(glGetUniformLocation(gl.mesh_program, "full_screen"), 0);
+    glUniform1ui(glGetUniformLocation(gl.mesh_program, "object_id"), object_id);
+    glUniform1ui(glGetUniformLocation(gl.mesh_program, "primitive_base"), primitive_base);
+    glBindVertexArray(gl.geometries[geometry].vao);
+    glDrawElements(GL_TRIANGLES, 3, GL_UNSIGNED_INT, nullptr);
+    glBindVertexArray(0);
+    return gl.read_back(near);
+}
+
+} // namespace glint

@@ -1,0 +1,54 @@
+// The item buffer (Ray Tracing III's last speed-up): every object drawn with its id into a
+// GL_RG32UI image (object index + 1, primitive index) with a 32-bit float reverse-Z depth, from
+// exactly the tracer's pinhole camera, then read back as an IdImage for trace/ to resolve.
+#pragma once
+
+#include "trace/primary_hits.h"
+
+#include <memory>
+#include <string_view>
+#include <vector>
+
+namespace glint {
+
+// mesh: tessellated (conservative) primitives; proxy: each analytic primitive's bounding box,
+// whose fragments intersect the true primitive (exact ids, no tessellation error).
+enum class RasterMode { mesh, proxy };
+
+std::string_view raster_mode_name(RasterMode mode);
+
+struct ItemBufferResult {
+    IdImage ids;
+    std::vector<std::uint32_t> primitives; // per pixel: triangle index within the drawn mesh
+};
+
+class ItemBuffer {
+  public:
+    // Needs a current GL context (raster/gl_context.h); compiles the shaders.
+    ItemBuffer();
+    ~ItemBuffer();
+    ItemBuffer(const ItemBuffer&) = delete;
+    ItemBuffer& operator=(const ItemBuffer&) = delete;
+
+    // Tessellates (mesh mode) and uploads what `world` needs drawn. `tessellation` is the number
+    // of segments around curved outlines.
+    void upload(const World& world, RasterMode mode, int tessellation);
+
+    // Draws the uploaded objects from the world's camera and reads back ids and depth.
+    ItemBufferResult draw(const World& world);
+
+    // Per object, in world units: how far what was drawn may lie from the true surface.
+    const std::vector<float>& deviations() const { return deviations_; }
+
+    // Draws one triangle (camera-relative positions) with the given ids, for tests of the
+    // id round trip beyond 2^24.
+    ItemBufferResult draw_triangle_for_test(const World& world, const Vec3 (&corners)[3],
+                                            std::uint32_t object_id, std::uint32_t primitive_base);
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+    std::vector<float> deviations_;
+};
+
+} // namespace glint
