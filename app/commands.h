@@ -13,6 +13,7 @@ struct Command {
 };
 
 Command add_render_command(CLI::App& app);
+Command add_compare_command(CLI::App& app);
 Command add_info_command(CLI::App& app);
 
 } // namespace glint

@@ -132,7 +132,11 @@ INSTANTIATE_TEST_SUITE_P(EveryClass, BadRunTest, ::testing::Values(
     BadRun{"zero threads", "", "render --threads 0", "--threads"},
     BadRun{"unknown flag", "", "render --fast", "--fast"},
     BadRun{"unknown mode", "", "render --mode magic", "--mode"},
-    BadRun{"hybrid before the item buffer", "", "render --mode hybrid", "--mode hybrid needs the item buffer"},
+    BadRun{"unknown GL backend", "", "render --gl glx", "--gl"},
+    BadRun{"unknown raster mode", "", "render --raster voxels", "--raster"},
+    BadRun{"tessellation below the minimum", "", "render --tess 2", "--tess"},
+    BadRun{"unknown resolve", "", "render --resolve maybe", "--resolve"},
+    BadRun{"compare: bad scene", R"({"objects": 1})", "compare scene.json", "scene.json: /objects: expected an array"},
     BadRun{"stats into a missing directory", "", "render --stats no/dir/s.json", "--stats no/dir/s.json: directory no/dir does not exist"}
 ), [](const auto& info) { return testing::test_name(info.param.what); });
 // clang-format on

@@ -1,0 +1,141 @@
+// `glint compare`: the same scene in hybrid and ray mode in one run, phase by phase, with the
+// ray image as the reference: id agreement, fallbacks, PSNR, maximum error, pixels off by > 1/255.
+#include "app/options.h"
+
+#include "trace/image_metrics.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+namespace glint {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CompareArgs {
+    SceneOptions scene;
+    FrameOptions frame;
+    std::string prefix;
+    std::string json;
+};
+
+std::string seconds(double s) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%9.4f", s);
+    return text;
+}
+
+int run_compare(const CompareArgs& args) {
+    if (!args.prefix.empty()) check_output(args.prefix + "-ray.png", "-o");
+    if (!args.json.empty()) check_output(args.json, "--json");
+    const Scene scene = args.scene.load();
+    const World world(scene);
+
+    FrameSettings settings = args.frame.settings();
+    settings.mode = Mode::ray;
+    const Frame ray = render_frame(world, settings);
+    settings.mode = Mode::hybrid;
+    const Frame hybrid = render_frame(world, settings);
+
+    const ImageDifference diff = compare_images(ray.result.image, hybrid.result.image);
+    const double agreement = id_agreement(ray.primary, hybrid.primary);
+    const double pixels = static_cast<double>(ray.primary.size());
+    // Per frame, the one-time set-up (context, shaders, upload) aside: what a preview pays again
+    // for every frame. The whole-frame ratio counts everything a single render pays.
+    const double primary_ratio = hybrid.times.primary_visibility() / ray.times.primary_visibility();
+    const double frame_ratio = hybrid.times.total() / ray.times.total();
+
+    const PhaseTimes &r = ray.times, &h = hybrid.times;
+    std::printf("glint compare: %s, %dx%d, %zu objects, %s\n", args.scene.scene_path().c_str(),
+                scene.camera.width, scene.camera.height, scene.objects.size(),
+                args.frame.describe().c_str());
+    std::printf("GL: %s\n\n", hybrid.gl_renderer.c_str());
+    std::printf("%-36s %9s %9s\n", "phase (seconds)", "ray", "hybrid");
+    std::printf("%-36s %9s %s\n", "GL context creation", "-", seconds(h.context).c_str());
+    std::printf("%-36s %9s %s\n", "shader compilation", "-", seconds(h.compile).c_str());
+    std::printf("%-36s %9s %s\n", "tessellation and upload", "-", seconds(h.upload).c_str());
+    std::printf("%-36s %9s %s\n", "rasterization + read-back", "-", seconds(h.raster).c_str());
+    std::printf("%-36s %s %s\n", "primary rays (ray) / resolve (hybrid)",
+                seconds(r.primary).c_str(), seconds(h.primary).c_str());
+    std::printf("%-36s %s %s\n", "shading (shadow + reflection rays)", seconds(r.shading).c_str(),
+                seconds(h.shading).c_str());
+    std::printf("%-36s %s %s\n\n", "total", seconds(r.total()).c_str(), seconds(h.total()).c_str());
+    std::printf("primary visibility, hybrid/ray:  %.3f  (raster + read-back + resolve vs. casting "
+                "primary rays)\n",
+                primary_ratio);
+    std::printf(
+        "whole frame, hybrid/ray:         %.3f  (including context, shaders and upload)\n\n",
+        frame_ratio);
+    std::printf("id agreement:        %.4f%% of pixels name the same primary object\n",
+                100 * agreement);
+    std::printf("fallback pixels:     %llu (named object missed; traced in full)\n",
+                static_cast<unsigned long long>(hybrid.primary_stats.fallbacks));
+    std::printf("corrected pixels:    %llu (exact resolve found a nearer object)\n",
+                static_cast<unsigned long long>(hybrid.primary_stats.corrected));
+    if (std::isinf(diff.psnr_db))
+        std::printf("PSNR:                inf (identical images)\n");
+    else
+        std::printf("PSNR:                %.2f dB\n", diff.psnr_db);
+    std::printf("max abs error:       %d/255\n", diff.max_abs_error);
+    std::printf("pixels off > 1/255:  %.4f%% (%llu)\n", 100 * diff.fraction_over_one,
+                static_cast<unsigned long long>(diff.pixels_over_one));
+
+    if (!args.prefix.empty()) {
+        write_png(args.prefix + "-ray.png", ray.result.image);
+        write_png(args.prefix + "-hybrid.png", hybrid.result.image);
+        write_png(args.prefix + "-diff.png",
+                  difference_heatmap(ray.result.image, hybrid.result.image));
+        if (hybrid.items)
+            write_png(args.prefix + "-ids.png",
+                      false_colour(hybrid.items->ids.ids, scene.camera.width, scene.camera.height));
+        std::printf("\nwrote %s-{ray,hybrid,diff,ids}.png\n", args.prefix.c_str());
+    }
+    if (!args.json.empty()) {
+        const auto phases = [](const PhaseTimes& t) {
+            return nlohmann::ordered_json{{"context", t.context}, {"compile", t.compile},
+                                          {"upload", t.upload},   {"raster", t.raster},
+                                          {"primary", t.primary}, {"shading", t.shading}};
+        };
+        const nlohmann::ordered_json out = {
+            {"scene", args.scene.scene_path().string()},
+            {"width", scene.camera.width},
+            {"height", scene.camera.height},
+            {"objects", scene.objects.size()},
+            {"settings", args.frame.describe()},
+            {"gl_renderer", hybrid.gl_renderer},
+            {"ray", {{"seconds", r.total()}, {"phases", phases(r)}}},
+            {"hybrid", {{"seconds", h.total()}, {"phases", phases(h)}}},
+            {"primary_ratio", primary_ratio},
+            {"frame_ratio", frame_ratio},
+            {"id_agreement", agreement},
+            {"fallback_pixels", hybrid.primary_stats.fallbacks},
+            {"corrected_pixels", hybrid.primary_stats.corrected},
+            {"psnr_db", std::isinf(diff.psnr_db) ? nlohmann::ordered_json(nullptr)
+                                                 : nlohmann::ordered_json(diff.psnr_db)},
+            {"max_abs_error", diff.max_abs_error},
+            {"fraction_over_1_255", diff.fraction_over_one},
+            {"pixels", pixels},
+        };
+        write_file_atomically(args.json, out.dump(2) + "\n");
+    }
+    return 0;
+}
+
+} // namespace
+
+Command add_compare_command(CLI::App& app) {
+    auto args = std::make_shared<CompareArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "compare", "Render in hybrid and ray mode side by side and measure the difference");
+    args->scene.add_to(*cmd);
+    args->frame.add_to(*cmd, false);
+    cmd->add_option("-o,--output", args->prefix,
+                    "Write PREFIX-ray.png, -hybrid.png, -diff.png and -ids.png");
+    cmd->add_option("--json", args->json, "Also write the measurements as JSON here");
+    return {cmd, [args] { return guarded([&] { return run_compare(*args); }); }};
+}
+
+} // namespace glint

@@ -1,0 +1,53 @@
+#include "app/frame.h"
+
+#include <chrono>
+
+namespace glint {
+namespace {
+
+// Runs `work` and adds its wall time to `seconds`.
+template <class Work> auto timed(double& seconds, const Work& work) {
+    const auto start = std::chrono::steady_clock::now();
+    struct Add {
+        double& seconds;
+        std::chrono::steady_clock::time_point start;
+        ~Add() {
+            seconds +=
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        }
+    } add{seconds, start};
+    return work();
+}
+
+} // namespace
+
+Frame render_frame(const World& world, const FrameSettings& settings,
+                   std::atomic<int>* tiles_done) {
+    Frame frame;
+    const TileProgress progress{settings.threads, tiles_done};
+    // Model only what the scene needs: an empty scene gets no GL context.
+    if (settings.mode == Mode::hybrid && !world.objects().empty()) {
+        // The GL pass runs before the tracing, not beside it: on 2 cores they would only compete.
+        const auto context = timed(frame.times.context, [&] { return make_context(settings.gl); });
+        frame.gl_renderer = context->renderer();
+        ItemBuffer items = timed(frame.times.compile, [] { return ItemBuffer(); });
+        timed(frame.times.upload, [&] {
+            items.upload(world, settings.raster, settings.tessellation);
+            return 0;
+        });
+        frame.items = timed(frame.times.raster, [&] { return items.draw(world); });
+        frame.deviations = items.deviations();
+        frame.primary = timed(frame.times.primary, [&] {
+            return primary_hits_from_ids(world, frame.items->ids, settings.resolve,
+                                         frame.primary_stats, progress);
+        });
+    } else {
+        frame.primary =
+            timed(frame.times.primary, [&] { return primary_hits_by_ray(world, progress); });
+    }
+    frame.result =
+        timed(frame.times.shading, [&] { return shade_image(world, frame.primary, progress); });
+    return frame;
+}
+
+} // namespace glint

@@ -1,0 +1,60 @@
+// What `render` and `compare` (and later commands) share: the scene and its overrides, the
+// frame settings, output checks, and turning exceptions into exit codes.
+#pragma once
+
+#include "app/commands.h"
+#include "app/frame.h"
+
+#include "trace/scene.h"
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+namespace glint {
+
+// Bad command-line input: exit code 2.
+class UsageError : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+struct SceneOptions {
+    std::string scene;
+    std::string size;
+    int max_depth = 0;
+    double min_reflectivity = 0;
+    CLI::Option* max_depth_option = nullptr;
+    CLI::Option* min_reflectivity_option = nullptr;
+
+    void add_to(CLI::App& cmd);
+    std::filesystem::path scene_path() const; // the given scene, or scenes/default.json
+    // Loads the scene (SceneError on bad input) and applies the overrides (UsageError).
+    Scene load() const;
+};
+
+struct FrameOptions {
+    std::string mode = "hybrid";
+    std::string gl = "osmesa";
+    std::string raster = "mesh";
+    std::string resolve = "exact";
+    int tessellation = kDefaultTessellation;
+    int threads = 0;
+
+    // `with_mode`: whether --mode is offered (compare runs both modes).
+    void add_to(CLI::App& cmd, bool with_mode);
+    FrameSettings settings() const;
+    // One line for people: "hybrid (osmesa, mesh, tess 32, exact)".
+    std::string describe() const;
+};
+
+// An output file must be creatable: its directory exists and it is not itself a directory.
+void check_output(const std::filesystem::path& path, const std::string& flag);
+
+// Runs a command body, turning exceptions into glint's exit codes and one-line messages:
+// bad input 2, anything else 1.
+int guarded(const std::function<int()>& body);
+
+double seconds_since(std::chrono::steady_clock::time_point start);
+
+} // namespace glint
