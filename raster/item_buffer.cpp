@@ -89,7 +89,7 @@ struct ItemBuffer::Impl {
     };
 
     GLuint mesh_program = 0, proxy_program = 0, empty_vao = 0;
-    GLuint framebuffer = 0, colour = 0, depth = 0;
+    GLuint framebuffer = 0, colour = 0, depth = 0, pack_buffer = 0;
     int width = 0, height = 0;
     std::vector<Geometry> geometries;
     std::vector<DrawItem> items;
@@ -100,7 +100,8 @@ struct ItemBuffer::Impl {
         glDeleteProgram(proxy_program);
         glDeleteVertexArrays(1, &empty_vao);
         glDeleteFramebuffers(1, &framebuffer);
-        glDeleteRenderbuffers(1, &colour);
+        glDeleteBuffers(1, &pack_buffer);
+        glDeleteTextures(1, &colour);
         glDeleteRenderbuffers(1, &depth);
     }
 
@@ -137,15 +138,17 @@ struct ItemBuffer::Impl {
         width = w, height = h;
         if (!framebuffer) {
             glGenFramebuffers(1, &framebuffer);
-            glGenRenderbuffers(1, &colour);
+            glGenTextures(1, &colour);
             glGenRenderbuffers(1, &depth);
         }
-        glBindRenderbuffer(GL_RENDERBUFFER, colour);
-        glRenderbufferStorage(GL_RENDERBUFFER, GL_RG32UI, w, h);
+        glBindTexture(GL_TEXTURE_2D, colour);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RG32UI, w, h, 0, GL_RG_INTEGER, GL_UNSIGNED_INT, nullptr);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         glBindRenderbuffer(GL_RENDERBUFFER, depth);
         glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, w, h);
         glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
-        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colour, 0);
         glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
         if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
             throw GlError(
@@ -168,40 +171,65 @@ struct ItemBuffer::Impl {
     }
 
     ItemBufferResult read_back(float near) {
-        glFinish();
-        std::vector<std::uint32_t> rg(static_cast<std::size_t>(width) * height * 2);
-        std::vector<float> depths(static_cast<std::size_t>(width) * height);
-        glPixelStorei(GL_PACK_ALIGNMENT, 4);
-        glReadBuffer(GL_COLOR_ATTACHMENT0);
-        glReadPixels(0, 0, width, height, GL_RG_INTEGER, GL_UNSIGNED_INT, rg.data());
-        glReadPixels(0, 0, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, depths.data());
-        if (const GLenum error = glGetError(); error != GL_NO_ERROR)
-            throw GlError("OpenGL error " + std::to_string(error) + " in the item-buffer pass");
+        const std::size_t pixels = static_cast<std::size_t>(width) * height;
         ItemBufferResult result;
         result.ids.width = width, result.ids.height = height;
-        result.ids.ids.resize(depths.size());
-        result.ids.view_depth.resize(depths.size());
-        result.primitives.resize(depths.size());
+        result.ids.ids.resize(pixels);
+        result.ids.view_depth.resize(pixels);
+        result.primitives.resize(pixels);
+        std::vector<float> depths(pixels);
+        glPixelStorei(GL_PACK_ALIGNMENT, 4);
+        // Ids through a pixel-pack buffer: once warm, Mesa copies RG32UI into it as it is
+        // (9 ms at 1600×1200 on llvmpipe), where a plain glReadPixels or glGetTexImage converts
+        // pixel by pixel (65 ms).
+        if (!pack_buffer) glGenBuffers(1, &pack_buffer);
+        glBindBuffer(GL_PIXEL_PACK_BUFFER, pack_buffer);
+        glBufferData(GL_PIXEL_PACK_BUFFER, static_cast<GLsizeiptr>(pixels * 8), nullptr,
+                     GL_STREAM_READ);
+        glReadBuffer(GL_COLOR_ATTACHMENT0);
+        glReadPixels(0, 0, width, height, GL_RG_INTEGER, GL_UNSIGNED_INT, nullptr);
+        const auto* rg = static_cast<const std::uint32_t*>(glMapBufferRange(
+            GL_PIXEL_PACK_BUFFER, 0, static_cast<GLsizeiptr>(pixels * 8), GL_MAP_READ_BIT));
+        glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+        glReadPixels(0, 0, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, depths.data());
+        std::uint32_t* ids = result.ids.ids.data();
+        std::uint32_t* primitives = result.primitives.data();
+        float* view_depth = result.ids.view_depth.data();
         for (int y = 0; y < height; ++y) {
             const std::size_t from =
                 static_cast<std::size_t>(height - 1 - y) * width; // GL's row 0 is the bottom
             const std::size_t to = static_cast<std::size_t>(y) * width;
             for (int x = 0; x < width; ++x) {
-                result.ids.ids[to + x] = rg[2 * (from + x)];
-                result.primitives[to + x] = rg[2 * (from + x) + 1];
+                ids[to + x] = rg[2 * (from + x)];
+                primitives[to + x] = rg[2 * (from + x) + 1];
                 const float d = depths[from + x];
-                result.ids.view_depth[to + x] = d > 0 ? near / d : kInfinity;
+                view_depth[to + x] = d > 0 ? near / d : kInfinity;
             }
         }
+        glBindBuffer(GL_PIXEL_PACK_BUFFER, pack_buffer);
+        glUnmapBuffer(GL_PIXEL_PACK_BUFFER);
+        glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+        if (const GLenum error = glGetError(); error != GL_NO_ERROR)
+            throw GlError("OpenGL error " + std::to_string(error) + " in the item-buffer pass");
         return result;
     }
 };
 
 ItemBuffer::ItemBuffer() : impl_(std::make_unique<Impl>()) {
-    impl_->mesh_program = link(shaders::kItemVert, shaders::kItemMeshFrag);
-    impl_->proxy_program = link(shaders::kItemVert, shaders::kItemProxyFrag);
-    glGenVertexArrays(1,
-                      &impl_->empty_vao); // core profile draws need a VAO even with no attributes
+    Impl& gl = *impl_;
+    gl.mesh_program = link(shaders::kItemVert, shaders::kItemMeshFrag);
+    gl.proxy_program = link(shaders::kItemVert, shaders::kItemProxyFrag);
+    glGenVertexArrays(1, &gl.empty_vao); // core profile draws need a VAO even with no attributes
+    // llvmpipe compiles a program's machine code at its first draw (~0.1–0.2 s): draw each once
+    // into a 1×1 target now, so that this cost counts as shader compilation, not as a frame.
+    gl.begin(1, 1);
+    glBindVertexArray(gl.empty_vao);
+    for (const GLuint program : {gl.mesh_program, gl.proxy_program}) {
+        glUseProgram(program);
+        glUniform1i(glGetUniformLocation(program, "full_screen"), 1);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    glBindVertexArray(0);
 }
 
 ItemBuffer::~ItemBuffer() = default;
