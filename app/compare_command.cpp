@@ -75,6 +75,8 @@ int run_compare(const CompareArgs& args) {
                 static_cast<unsigned long long>(hybrid.primary_stats.fallbacks));
     std::printf("corrected pixels:    %llu (exact resolve found a nearer object)\n",
                 static_cast<unsigned long long>(hybrid.primary_stats.corrected));
+    std::printf("edge pixels:         %llu (exact resolve traced them in full: ids change there)\n",
+                static_cast<unsigned long long>(hybrid.primary_stats.edges));
     if (std::isinf(diff.psnr_db))
         std::printf("PSNR:                inf (identical images)\n");
     else
@@ -113,6 +115,7 @@ int run_compare(const CompareArgs& args) {
             {"id_agreement", agreement},
             {"fallback_pixels", hybrid.primary_stats.fallbacks},
             {"corrected_pixels", hybrid.primary_stats.corrected},
+            {"edge_pixels", hybrid.primary_stats.edges},
             {"psnr_db", std::isinf(diff.psnr_db) ? nlohmann::ordered_json(nullptr)
                                                  : nlohmann::ordered_json(diff.psnr_db)},
             {"max_abs_error", diff.max_abs_error},

@@ -92,6 +92,7 @@ int run_render(const RenderArgs& args) {
                                {"exact_intersections", frame.primary_stats.exact_intersections},
                                {"fallbacks", frame.primary_stats.fallbacks},
                                {"corrected", frame.primary_stats.corrected},
+                               {"edges", frame.primary_stats.edges},
                                {"max_deviation", frame.deviations.empty()
                                                      ? 0.0f
                                                      : *std::max_element(frame.deviations.begin(),

@@ -25,7 +25,29 @@ std::vector<Hit> primary_hits_by_ray(const World& world, const TileProgress& pro
 // finds something is the pixel traced in full. t_r comes from a float depth buffer, so the
 // interval starts a relative 1e-3 earlier: far beyond the depth's rounding, and costing only a
 // slightly longer query, since anything found must still lie before t_k.
+//
+// Coverage is conservative only up to rounding: at a pixel centre within float rounding of a
+// silhouette edge (a box face, a triangle, a proxy fragment's own intersection), GL and the
+// tracer may disagree on whether the edge's object covers it, and the id image may then name
+// the object behind. Such pixels lie where ids change, so exact mode traces every pixel whose
+// 8 neighbours do not all carry its id.
 constexpr float kDepthSlack = 1e-3f;
+
+namespace {
+
+bool on_id_boundary(const IdImage& ids, int x, int y) {
+    const std::uint32_t id = ids.ids[static_cast<std::size_t>(y) * ids.width + x];
+    for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+            const int nx = x + dx, ny = y + dy;
+            if (nx < 0 || ny < 0 || nx >= ids.width || ny >= ids.height) continue;
+            if (ids.ids[static_cast<std::size_t>(ny) * ids.width + nx] != id) return true;
+        }
+    }
+    return false;
+}
+
+} // namespace
 
 std::vector<Hit> primary_hits_from_ids(const World& world, const IdImage& ids, Resolve resolve,
                                        PrimaryStats& stats, const TileProgress& progress) {
@@ -38,6 +60,11 @@ std::vector<Hit> primary_hits_from_ids(const World& world, const IdImage& ids, R
         for (int y = y0; y < y1; ++y) {
             for (int x = x0; x < x1; ++x) {
                 const std::size_t p = static_cast<std::size_t>(y) * width + x;
+                if (resolve == Resolve::exact && on_id_boundary(ids, x, y)) {
+                    ++local.edges;
+                    hits[p] = world.intersect(camera.ray(x, y));
+                    continue;
+                }
                 if (ids.ids[p] == 0)
                     continue; // nothing drawn: enclosing surfaces cover every true one
                 const std::uint32_t object = ids.ids[p] - 1;
@@ -68,6 +95,7 @@ std::vector<Hit> primary_hits_from_ids(const World& world, const IdImage& ids, R
         stats.exact_intersections += local.exact_intersections;
         stats.fallbacks += local.fallbacks;
         stats.corrected += local.corrected;
+        stats.edges += local.edges;
     });
     return hits;
 }

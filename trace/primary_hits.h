@@ -26,6 +26,7 @@ struct PrimaryStats {
     std::uint64_t exact_intersections = 0; // pixels resolved by intersecting one named object
     std::uint64_t fallbacks = 0; // the named object was missed: the pixel was fully traced
     std::uint64_t corrected = 0; // exact mode found a nearer object than the named one
+    std::uint64_t edges = 0;     // exact mode: on an id boundary, so traced in full
 };
 
 // Casts the camera ray of every pixel.
