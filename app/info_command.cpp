@@ -1,10 +1,13 @@
 // `glint info`: what this build is and what it can use.
 #include "app/commands.h"
 
+#include "raster/gl_context.h"
+
 #include <tbb/task_arena.h>
 #include <tbb/version.h>
 
 #include <cstdio>
+#include <string>
 
 namespace glint {
 
@@ -14,7 +17,17 @@ Command add_info_command(CLI::App& app) {
                 std::printf("glint %s (%s build)\n", GLINT_VERSION, GLINT_BUILD_TYPE);
                 std::printf("threads: %d (oneTBB %d.%d)\n", tbb::this_task_arena::max_concurrency(),
                             TBB_VERSION_MAJOR, TBB_VERSION_MINOR);
-                std::printf("OpenGL: not built yet (the item buffer is a separate issue)\n");
+                for (const GlBackend backend : {GlBackend::osmesa, GlBackend::egl}) {
+                    try {
+                        const auto context = make_context(backend);
+                        std::printf("OpenGL (%s): %s, %s\n",
+                                    std::string(backend_name(backend)).c_str(),
+                                    context->renderer().c_str(), context->version().c_str());
+                    } catch (const GlError& e) {
+                        std::printf("OpenGL (%s): unavailable: %s\n",
+                                    std::string(backend_name(backend)).c_str(), e.what());
+                    }
+                }
                 return 0;
             }};
 }

@@ -40,8 +40,9 @@ fs::path fresh_dir() {
     return dir;
 }
 
-Outcome glint(const fs::path& dir, const std::string& args) {
-    const std::string command = "cd '" + dir.string() + "' && '" GLINT_BINARY "' " + args +
+Outcome glint(const fs::path& dir, const std::string& args, const std::string& environment = "") {
+    const std::string command = "cd '" + dir.string() + "' && " + environment +
+                                " '" GLINT_BINARY "' " + args +
                                 " >stdout.txt 2>stderr.txt </dev/null";
     const int status = std::system(command.c_str());
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir / "stdout.txt"),
@@ -161,6 +162,22 @@ TEST(Cli, AnOutputThatCannotBeWrittenIsARuntimeError) {
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_NE(r.err.find("cannot write /proc/glint-test.png"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists("/proc/glint-test.png"));
+}
+
+TEST(Cli, NoGlContextIsAClearErrorNamingRayMode) {
+    // Mesa's version override makes both OSMesa and EGL refuse a 3.3 core context.
+    const fs::path dir = fresh_dir();
+    for (const char* gl : {"osmesa", "egl"}) {
+        const Outcome r = glint(dir, std::string("render --size 8x6 -o a.png --gl ") + gl,
+                                "MESA_GL_VERSION_OVERRIDE=2.1");
+        EXPECT_EQ(r.exit_code, 1) << gl;
+        EXPECT_NE(r.err.find("no OpenGL for the item buffer"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("--mode ray"), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(dir / "a.png"));
+    }
+    EXPECT_EQ(glint(dir, "render --size 8x6 -o a.png --mode ray", "MESA_GL_VERSION_OVERRIDE=2.1")
+                  .exit_code,
+              0);
 }
 
 TEST(Cli, HelpAndVersionExitZero) {
