@@ -32,7 +32,7 @@ int run_compare(const CompareArgs& args) {
     if (!args.prefix.empty()) check_output(args.prefix + "-ray.png", "-o");
     if (!args.json.empty()) check_output(args.json, "--json");
     const Scene scene = args.scene.load();
-    const World world(scene);
+    const World world(scene, args.scene.accel_kind());
 
     FrameSettings settings = args.frame.settings();
     settings.mode = Mode::ray;
@@ -49,9 +49,10 @@ int run_compare(const CompareArgs& args) {
     const double frame_ratio = hybrid.times.total() / ray.times.total();
 
     const PhaseTimes &r = ray.times, &h = hybrid.times;
-    std::printf("glint compare: %s, %dx%d, %zu objects, %s\n", args.scene.scene_path().c_str(),
+    std::printf("glint compare: %s, %dx%d, %zu objects, %s, %s\n", args.scene.scene_path().c_str(),
                 scene.camera.width, scene.camera.height, scene.objects.size(),
-                args.frame.describe().c_str());
+                args.frame.describe().c_str(),
+                std::string(accel_name(world.accelerator().kind())).c_str());
     std::printf("GL: %s\n\n", hybrid.gl_renderer.c_str());
     std::printf("%-36s %9s %9s\n", "phase (seconds)", "ray", "hybrid");
     std::printf("%-36s %9s %s\n", "GL context creation", "-", seconds(h.context).c_str());
@@ -107,6 +108,7 @@ int run_compare(const CompareArgs& args) {
             {"height", scene.camera.height},
             {"objects", scene.objects.size()},
             {"settings", args.frame.describe()},
+            {"accel", accel_name(world.accelerator().kind())},
             {"gl_renderer", hybrid.gl_renderer},
             {"ray", {{"seconds", r.total()}, {"phases", phases(r)}}},
             {"hybrid", {{"seconds", h.total()}, {"phases", phases(h)}}},

@@ -12,6 +12,11 @@ namespace fs = std::filesystem;
 void SceneOptions::add_to(CLI::App& cmd) {
     cmd.add_option("scene", scene, "Scene file (JSON); default scenes/default.json");
     cmd.add_option("--size", size, "Image size WIDTHxHEIGHT, overriding the scene's camera");
+    cmd.add_option("--accel", accel,
+                   "Acceleration structure: bvh, spheres, grid, kd or list; auto: list below 16 "
+                   "objects, else bvh")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"auto", "bvh", "spheres", "grid", "kd", "list"}));
     max_depth_option =
         cmd.add_option("--max-depth", max_depth, "Maximum reflection depth (0 = none)")
             ->check(CLI::Range(0, kMaxDepth));
@@ -45,6 +50,10 @@ Scene SceneOptions::load() const {
     if (min_reflectivity_option->count())
         loaded.render.min_reflectivity = static_cast<float>(min_reflectivity);
     return loaded;
+}
+
+std::optional<AccelKind> SceneOptions::accel_kind() const {
+    return accel_from_name(accel);
 }
 
 void FrameOptions::add_to(CLI::App& cmd, bool with_mode) {

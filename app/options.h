@@ -21,6 +21,7 @@ class UsageError : public std::runtime_error {
 
 struct SceneOptions {
     std::string scene;
+    std::string accel = "auto";
     std::string size;
     int max_depth = 0;
     double min_reflectivity = 0;
@@ -31,6 +32,8 @@ struct SceneOptions {
     std::filesystem::path scene_path() const; // the given scene, or scenes/default.json
     // Loads the scene (SceneError on bad input) and applies the overrides (UsageError).
     Scene load() const;
+    // The --accel choice; nothing for auto (list below kListBelow objects, else bvh).
+    std::optional<AccelKind> accel_kind() const;
 };
 
 struct FrameOptions {

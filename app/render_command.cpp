@@ -38,7 +38,8 @@ int run_render(const RenderArgs& args) {
     const Scene scene = args.scene.load();
     const double load_seconds = seconds_since(start);
     const auto prepare_start = std::chrono::steady_clock::now();
-    const World world(scene);
+    World world(scene, args.scene.accel_kind());
+    if (!args.stats.empty()) world.count_traversals(true);
     const double prepare_seconds = seconds_since(prepare_start);
 
     std::atomic<int> tiles_done{0};
@@ -83,6 +84,17 @@ int run_render(const RenderArgs& args) {
             {"rays",
              {{"primary", rays.primary}, {"shadow", rays.shadow}, {"reflection", rays.reflection}}},
         };
+        // Per ray: over every query the tracer made (primary, shadow and reflection rays, and in
+        // hybrid mode the resolve's exact-interval queries, counted with the primary rays).
+        const TraversalCounters counts = world.traversal_counts();
+        const double queries = static_cast<double>(rays.primary + rays.shadow + rays.reflection);
+        stats["accel"] = {
+            {"kind", accel_name(world.accelerator().kind())},
+            {"build_seconds", world.build_seconds()},
+            {"memory_bytes", world.accelerator().memory_bytes()},
+            {"nodes", world.accelerator().node_count()},
+            {"nodes_visited_per_ray", static_cast<double>(counts.nodes) / queries},
+            {"primitives_tested_per_ray", static_cast<double>(counts.primitives) / queries}};
         if (settings.mode == Mode::hybrid) {
             stats["hybrid"] = {{"gl", args.frame.gl},
                                {"gl_renderer", frame.gl_renderer},
@@ -100,9 +112,11 @@ int run_render(const RenderArgs& args) {
         }
         write_file_atomically(args.stats, stats.dump(2) + "\n");
     }
-    std::printf("glint: wrote %s (%dx%d, %s, %d threads) in %.3f s (render %.3f s)\n",
+    std::printf("glint: wrote %s (%dx%d, %s, %s, %d threads) in %.3f s (render %.3f s)\n",
                 output.c_str(), scene.camera.width, scene.camera.height,
-                args.frame.describe().c_str(), threads, total_seconds, t.total());
+                args.frame.describe().c_str(),
+                std::string(accel_name(world.accelerator().kind())).c_str(), threads, total_seconds,
+                t.total());
     std::printf("rays: %llu primary, %llu shadow, %llu reflection\n",
                 static_cast<unsigned long long>(rays.primary),
                 static_cast<unsigned long long>(rays.shadow),

@@ -6,6 +6,7 @@
 #include "trace/shapes/plane.h"
 #include "trace/shapes/sphere.h"
 
+#include <chrono>
 #include <cmath>
 
 namespace glint {
@@ -52,7 +53,7 @@ Bounds world_bounds(const Bounds& local, const DMat4& m) {
 
 } // namespace
 
-World::World(const Scene& scene)
+World::World(const Scene& scene, std::optional<AccelKind> accel)
     : camera_(scene.camera), meshes_(scene.meshes), materials_(scene.materials),
       background_(scene.background), ambient_(scene.ambient), settings_(scene.render) {
     // Camera-relative coordinates, composed in double: precision follows the scene's size, not
@@ -67,9 +68,41 @@ World::World(const Scene& scene)
     }
     for (const PointLight& light : scene.lights)
         lights_.push_back({Vec3(light.position - scene.camera.eye), light.color});
+
+    const auto start = std::chrono::steady_clock::now();
+    // Two levels: each mesh gets a BVH over its triangles (object space), so that to the top
+    // level a mesh of a million triangles is one object.
+    for (Mesh& mesh : meshes_) {
+        if (mesh.triangles.size() <= 8) continue;
+        std::vector<Bounds> triangles;
+        triangles.reserve(mesh.triangles.size());
+        for (const glm::uvec3& t : mesh.triangles) {
+            Bounds b;
+            b.extend(mesh.vertices[t.x]), b.extend(mesh.vertices[t.y]),
+                b.extend(mesh.vertices[t.z]);
+            triangles.push_back(b);
+        }
+        mesh.bvh = Bvh(triangles);
+    }
+    std::vector<Bounds> item_bounds;
+    for (std::uint32_t i = 0; i < objects_.size(); ++i) {
+        if (!objects_[i].bounded) {
+            unbounded_.push_back(i);
+            continue;
+        }
+        bounded_.push_back(i);
+        item_bounds.push_back(objects_[i].bounds);
+    }
+    const AccelKind kind =
+        accel.value_or(bounded_.size() < kListBelow ? AccelKind::list : AccelKind::bvh);
+    accel_ = Accelerator(kind, std::move(item_bounds));
+    build_seconds_ =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-ShapeHit World::intersect_object(const Object& object, const Ray& world_ray, float t_max) const {
+template <class Counters>
+ShapeHit World::intersect_object(const Object& object, const Ray& world_ray, float t_max,
+                                 Counters& counters) const {
     const Ray ray = object.transform.to_object(world_ray);
     switch (object.shape) {
     case ShapeKind::sphere:
@@ -86,38 +119,67 @@ ShapeHit World::intersect_object(const Object& object, const Ray& world_ray, flo
         return intersect_cone(ray, object.top_radius, t_max);
     case ShapeKind::triangle:
     case ShapeKind::mesh:
-        return intersect_mesh(meshes_[object.mesh], ray, t_max);
+        return intersect_mesh(meshes_[object.mesh], ray, t_max, counters);
     }
     return {};
 }
 
-Hit World::intersect(const Ray& ray, float t_max) const {
+// Ties: on equal t the lower object index wins, whatever order a structure visits objects in,
+// so every structure returns exactly the list's hit. Each object is therefore tested up to the
+// next float above the best t, and an equal t replaces the best only from a lower index.
+template <class Counters>
+Hit World::closest(const Ray& ray, float t_max, Counters& counters) const {
     Hit best;
     best.t = t_max;
-    const Vec3 inverse_direction = 1.0f / ray.direction;
-    for (std::uint32_t i = 0; i < objects_.size(); ++i) {
-        const Object& object = objects_[i];
-        if (object.bounded && !hits_bounds(object.bounds, ray, inverse_direction, best.t)) continue;
-        const ShapeHit h = intersect_object(object, ray, best.t);
-        if (h.t < best.t) best = {h.t, i, h.part};
-    }
+    const auto consider = [&](std::uint32_t object) {
+        const float limit = best.found() ? std::nextafter(best.t, kInfinity) : best.t;
+        const ShapeHit h = intersect_object(objects_[object], ray, limit, counters);
+        if (h.t < best.t || (h.t == best.t && best.found() && object < best.object))
+            best = {h.t, object, h.part};
+    };
+    for (const std::uint32_t object : unbounded_) counters.primitive(), consider(object);
+    float limit = best.t;
+    accel_.traverse(ray, limit, counters, [&](std::uint32_t item, float& t_limit) {
+        consider(bounded_[item]);
+        // Let the structure prune only beyond the best hit (ties at best.t must still be seen).
+        t_limit = best.found() ? std::nextafter(best.t, kInfinity) : best.t;
+        return false;
+    });
     return best;
 }
 
-bool World::occluded(const Ray& ray, float t_max, std::uint32_t skip) const {
-    const Vec3 inverse_direction = 1.0f / ray.direction;
-    for (std::uint32_t i = 0; i < objects_.size(); ++i) {
-        const Object& object = objects_[i];
-        if (i == skip ||
-            (object.bounded && !hits_bounds(object.bounds, ray, inverse_direction, t_max)))
-            continue;
-        if (intersect_object(object, ray, t_max).found()) return true;
+template <class Counters>
+bool World::any(const Ray& ray, float t_max, std::uint32_t skip, Counters& counters) const {
+    for (const std::uint32_t object : unbounded_) {
+        counters.primitive();
+        if (object != skip && intersect_object(objects_[object], ray, t_max, counters).found())
+            return true;
     }
-    return false;
+    bool found = false;
+    float limit = t_max;
+    accel_.traverse(ray, limit, counters, [&](std::uint32_t item, float&) {
+        const std::uint32_t object = bounded_[item];
+        found = object != skip && intersect_object(objects_[object], ray, t_max, counters).found();
+        return found;
+    });
+    return found;
+}
+
+Hit World::intersect(const Ray& ray, float t_max) const {
+    if (counting_) return closest(ray, t_max, counters_.local());
+    NoCounters none;
+    return closest(ray, t_max, none);
+}
+
+bool World::occluded(const Ray& ray, float t_max, std::uint32_t skip) const {
+    if (counting_) return any(ray, t_max, skip, counters_.local());
+    NoCounters none;
+    return any(ray, t_max, skip, none);
 }
 
 Hit World::intersect_one(std::uint32_t object, const Ray& ray, float t_max) const {
-    const ShapeHit h = intersect_object(objects_[object], ray, t_max);
+    NoCounters none;
+    const ShapeHit h = intersect_object(objects_[object], ray, t_max, none);
     return h.found() ? Hit{h.t, object, h.part} : Hit{};
 }
 

@@ -2,10 +2,14 @@
 // brute-force closest-hit and any-hit queries (the `list` structure every other one must match).
 #pragma once
 
+#include "trace/accel/accel.h"
 #include "trace/camera.h"
 #include "trace/scene.h"
 #include "trace/transform.h"
 
+#include <tbb/enumerable_thread_specific.h>
+
+#include <optional>
 #include <vector>
 
 namespace glint {
@@ -33,9 +37,14 @@ struct SurfacePoint {
     Vec3 spawn() const { return position + offset * normal; }
 };
 
+// Below this many bounded objects, testing each one's box beats any hierarchy: the default
+// structure is then the plain list (model only what the scene needs).
+inline constexpr std::size_t kListBelow = 16;
+
 class World {
   public:
-    explicit World(const Scene& scene);
+    // `accel`: the acceleration structure; by default list below kListBelow objects, else bvh.
+    explicit World(const Scene& scene, std::optional<AccelKind> accel = std::nullopt);
 
     // The closest hit in (0, t_max); ties go to the lower object index.
     Hit intersect(const Ray& ray, float t_max = kInfinity) const;
@@ -55,9 +64,22 @@ class World {
     Vec3 background() const { return background_; }
     Vec3 ambient() const { return ambient_; }
     const RenderSettings& settings() const { return settings_; }
+    const Accelerator& accelerator() const { return accel_; }
+    double build_seconds() const {
+        return build_seconds_;
+    } // acceleration structures, meshes' included
+
+    // Counts nodes visited and primitives tested by every query from now on (a little slower).
+    void count_traversals(bool on) { counting_ = on; }
+    TraversalCounters traversal_counts() const { return counters_.combine(std::plus<>()); }
 
   private:
-    ShapeHit intersect_object(const Object& object, const Ray& world_ray, float t_max) const;
+    template <class Counters>
+    ShapeHit intersect_object(const Object& object, const Ray& world_ray, float t_max,
+                              Counters& counters) const;
+    template <class Counters> Hit closest(const Ray& ray, float t_max, Counters& counters) const;
+    template <class Counters>
+    bool any(const Ray& ray, float t_max, std::uint32_t skip, Counters& counters) const;
 
     PinholeCamera camera_;
     std::vector<Object> objects_;
@@ -66,6 +88,12 @@ class World {
     std::vector<Light> lights_;
     Vec3 background_, ambient_;
     RenderSettings settings_;
+    std::vector<std::uint32_t> unbounded_; // planes: tested by every ray
+    std::vector<std::uint32_t> bounded_;   // accelerator item → object index
+    Accelerator accel_;
+    double build_seconds_ = 0;
+    bool counting_ = false;
+    mutable tbb::enumerable_thread_specific<TraversalCounters> counters_;
 };
 
 } // namespace glint

@@ -1,40 +1,19 @@
 // Triangles and indexed triangle meshes (counter-clockwise front), in object space.
 #pragma once
 
+#include "trace/accel/bvh.h"
+#include "trace/bounds.h"
 #include "trace/shapes/shape.h"
 
 #include <vector>
 
 namespace glint {
 
-struct Bounds {
-    Vec3 lo{kInfinity};
-    Vec3 hi{-kInfinity};
-
-    void extend(Vec3 p) { lo = glm::min(lo, p), hi = glm::max(hi, p); }
-};
-
-// Slab test of a ray (with precomputed 1/direction) against a box over (0, t_max). Conservative:
-// the far distance is enlarged by 2γ3 (pbrt-v4, Bounds3::IntersectP), and NaNs from 0·inf at a
-// slab's edge never reject.
-inline bool hits_bounds(const Bounds& b, const Ray& ray, Vec3 inverse_direction, float t_max) {
-    float t_near = 0.0f, t_far = t_max;
-    for (int axis = 0; axis < 3; ++axis) {
-        float t0 = (b.lo[axis] - ray.origin[axis]) * inverse_direction[axis];
-        float t1 = (b.hi[axis] - ray.origin[axis]) * inverse_direction[axis];
-        if (t0 > t1) std::swap(t0, t1);
-        t1 *= 1.0f + 2.0f * gamma(3);
-        if (t0 > t_near) t_near = t0;
-        if (t1 < t_far) t_far = t1;
-        if (t_near > t_far) return false;
-    }
-    return true;
-}
-
 struct Mesh {
     std::vector<Vec3> vertices;
     std::vector<glm::uvec3> triangles; // indices into vertices
     Bounds bounds;                     // of the vertices, object space
+    Bvh bvh;                           // over the triangles, object space; built by World
 };
 
 struct TriangleHit {
@@ -60,14 +39,25 @@ inline TriangleHit intersect_triangle(Vec3 p0, Vec3 p1, Vec3 p2, const Ray& ray)
     return {glm::dot(e2, qv) * inverse_det, u, v};
 }
 
-inline ShapeHit intersect_mesh(const Mesh& mesh, const Ray& ray, float t_max) {
-    if (!hits_bounds(mesh.bounds, ray, 1.0f / ray.direction, t_max)) return {};
+// The nearest triangle: through the mesh's own BVH (the bottom level of a two-level structure),
+// or, for meshes too small to have one, all of them.
+template <class Counters>
+ShapeHit intersect_mesh(const Mesh& mesh, const Ray& ray, float t_max, Counters& counters) {
     ShapeHit best;
-    for (std::uint32_t i = 0; i < mesh.triangles.size(); ++i) {
+    const auto test = [&](std::uint32_t i, float& limit) {
         const glm::uvec3 tri = mesh.triangles[i];
         const TriangleHit h = intersect_triangle(mesh.vertices[tri.x], mesh.vertices[tri.y],
                                                  mesh.vertices[tri.z], ray);
-        best = closer(best, candidate(h.t, glm::min(t_max, best.t), i));
+        if (h.t > 0 && h.t < limit && h.t < best.t) best = {h.t, i}, limit = h.t;
+        return false;
+    };
+    float limit = t_max;
+    if (!mesh.bvh.nodes().empty()) {
+        mesh.bvh.traverse(ray, limit, counters, test);
+    } else {
+        if (!hits_bounds(mesh.bounds, ray, 1.0f / ray.direction, t_max)) return {};
+        for (std::uint32_t i = 0; i < mesh.triangles.size(); ++i)
+            counters.primitive(), test(i, limit);
     }
     return best;
 }

@@ -1,0 +1,39 @@
+#include "trace/accel/accel.h"
+
+namespace glint {
+
+std::optional<AccelKind> accel_from_name(std::string_view name) {
+    for (int k = 0; k < 5; ++k)
+        if (kAccelNames[k] == name) return static_cast<AccelKind>(k);
+    return std::nullopt;
+}
+
+Accelerator::Accelerator(AccelKind kind, std::vector<Bounds> items) {
+    switch (kind) {
+    case AccelKind::list:
+        structure_.emplace<ItemList>(ItemList{std::move(items)});
+        break;
+    case AccelKind::bvh:
+        structure_.emplace<Bvh>(items);
+        break;
+    case AccelKind::spheres:
+        structure_.emplace<SphereTree>(items);
+        break;
+    case AccelKind::grid:
+        structure_.emplace<UniformGrid>(items);
+        break;
+    case AccelKind::kd:
+        structure_.emplace<KdTree>(items);
+        break;
+    }
+}
+
+std::size_t Accelerator::memory_bytes() const {
+    return std::visit([](const auto& s) { return s.memory_bytes(); }, structure_);
+}
+
+std::size_t Accelerator::node_count() const {
+    return std::visit([](const auto& s) { return s.node_count(); }, structure_);
+}
+
+} // namespace glint

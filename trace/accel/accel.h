@@ -1,0 +1,78 @@
+// Acceleration structures (DESIGN.md §4; Ray Tracing III: extents and space division), all
+// behind one traversal: traverse(ray, t_max, counters, visit) calls visit(item, t_max) for the
+// items the ray may hit, nearest regions first where the structure knows them; the visitor tests
+// the item, may shorten t_max (closest hit) and returns true to stop (any hit). The kinds are a
+// closed set: one switch dispatches, and each traversal is a template, so the hot path has no
+// virtual call.
+#pragma once
+
+#include "trace/accel/bvh.h"
+#include "trace/accel/grid.h"
+#include "trace/accel/kd_tree.h"
+#include "trace/accel/sphere_tree.h"
+
+#include <optional>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+namespace glint {
+
+enum class AccelKind : std::uint8_t { list, bvh, spheres, grid, kd };
+
+inline constexpr std::string_view kAccelNames[] = {"list", "bvh", "spheres", "grid", "kd"};
+
+inline std::string_view accel_name(AccelKind kind) {
+    return kAccelNames[static_cast<int>(kind)];
+}
+std::optional<AccelKind> accel_from_name(std::string_view name);
+
+// Brute force: every item's box, in order. The reference every other structure must match.
+struct ItemList {
+    std::vector<Bounds> bounds;
+
+    template <class Counters, class Visit>
+    void traverse(const Ray& ray, float& t_max, Counters& counters, Visit&& visit) const {
+        const Vec3 inverse_direction = 1.0f / ray.direction;
+        for (std::uint32_t i = 0; i < bounds.size(); ++i) {
+            counters.node();
+            if (!hits_bounds(bounds[i], ray, inverse_direction, t_max)) continue;
+            counters.primitive();
+            if (visit(i, t_max)) return;
+        }
+    }
+    std::size_t memory_bytes() const { return bounds.size() * sizeof(Bounds); }
+    std::size_t node_count() const { return bounds.size(); }
+};
+
+class Accelerator {
+  public:
+    Accelerator() = default;
+    // Builds the structure over the items' world-space bounds.
+    Accelerator(AccelKind kind, std::vector<Bounds> items);
+
+    AccelKind kind() const { return static_cast<AccelKind>(structure_.index()); }
+    std::size_t memory_bytes() const;
+    std::size_t node_count() const;
+
+    template <class Counters, class Visit>
+    void traverse(const Ray& ray, float& t_max, Counters& counters, Visit&& visit) const {
+        switch (structure_.index()) {
+        case 0:
+            return std::get<0>(structure_).traverse(ray, t_max, counters, visit);
+        case 1:
+            return std::get<1>(structure_).traverse(ray, t_max, counters, visit);
+        case 2:
+            return std::get<2>(structure_).traverse(ray, t_max, counters, visit);
+        case 3:
+            return std::get<3>(structure_).traverse(ray, t_max, counters, visit);
+        case 4:
+            return std::get<4>(structure_).traverse(ray, t_max, counters, visit);
+        }
+    }
+
+  private:
+    std::variant<ItemList, Bvh, SphereTree, UniformGrid, KdTree> structure_;
+};
+
+} // namespace glint

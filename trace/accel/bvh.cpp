@@ -1,0 +1,123 @@
+#include "trace/accel/bvh.h"
+
+#include <tbb/parallel_invoke.h>
+
+#include <algorithm>
+#include <atomic>
+
+namespace glint {
+namespace {
+
+constexpr int kBins = 16;
+constexpr std::uint32_t kMaxLeafSize = 4;
+constexpr std::uint32_t kParallelBelow = 4096; // subtrees smaller than this are built serially
+
+struct Builder {
+    std::span<const Bounds> bounds;
+    std::vector<Vec3> centres;
+    std::vector<std::uint32_t>& items;
+    std::vector<BvhNode>& nodes;
+    std::atomic<std::uint32_t> next_node{1};
+
+    void leaf(BvhNode& node, std::uint32_t begin, std::uint32_t end) {
+        node.first = begin;
+        node.count = end - begin;
+    }
+
+    // Builds the subtree of items[begin, end) into nodes[index].
+    void build(std::uint32_t index, std::uint32_t begin, std::uint32_t end) {
+        BvhNode& node = nodes[index];
+        Bounds box, centroid_box;
+        for (std::uint32_t i = begin; i < end; ++i) {
+            box.extend(bounds[items[i]]);
+            centroid_box.extend(centres[items[i]]);
+        }
+        node.bounds = box;
+        const std::uint32_t count = end - begin;
+        if (count <= 2) return leaf(node, begin, end);
+
+        // Binned SAH over the centroids (Wald 2007): cost of a split ∝ A_left·N_left +
+        // A_right·N_right.
+        const Vec3 extent = centroid_box.hi - centroid_box.lo;
+        float best_cost = kInfinity;
+        int best_axis = -1, best_split = 0;
+        for (int axis = 0; axis < 3; ++axis) {
+            if (!(extent[axis] > 0)) continue;
+            Bounds bin_box[kBins];
+            std::uint32_t bin_count[kBins] = {};
+            const float scale = kBins / extent[axis];
+            for (std::uint32_t i = begin; i < end; ++i) {
+                const int b = std::min(
+                    kBins - 1,
+                    static_cast<int>((centres[items[i]][axis] - centroid_box.lo[axis]) * scale));
+                ++bin_count[b];
+                bin_box[b].extend(bounds[items[i]]);
+            }
+            float right_area[kBins];
+            std::uint32_t right_count[kBins];
+            Bounds right;
+            std::uint32_t n = 0;
+            for (int b = kBins - 1; b > 0; --b) {
+                right.extend(bin_box[b]);
+                n += bin_count[b];
+                right_area[b] = right.area();
+                right_count[b] = n;
+            }
+            Bounds left;
+            n = 0;
+            for (int b = 0; b < kBins - 1; ++b) {
+                left.extend(bin_box[b]);
+                n += bin_count[b];
+                if (n == 0 || right_count[b + 1] == 0) continue;
+                const float cost = left.area() * n + right_area[b + 1] * right_count[b + 1];
+                if (cost < best_cost) best_cost = cost, best_axis = axis, best_split = b;
+            }
+        }
+        // A leaf costs one test per item; a split one box test plus the children's expected tests.
+        const float leaf_cost = box.area() * count;
+        if (count <= kMaxLeafSize && (best_axis < 0 || best_cost >= leaf_cost))
+            return leaf(node, begin, end);
+        std::uint32_t middle;
+        if (best_axis >= 0) {
+            const float scale = kBins / extent[best_axis];
+            const float lo = centroid_box.lo[best_axis];
+            middle = static_cast<std::uint32_t>(
+                std::partition(items.begin() + begin, items.begin() + end,
+                               [&](std::uint32_t item) {
+                                   return std::min(kBins - 1, static_cast<int>(
+                                                                  (centres[item][best_axis] - lo) *
+                                                                  scale)) <= best_split;
+                               }) -
+                items.begin());
+        } else { // all centroids coincide: split the list in half
+            middle = begin + count / 2;
+        }
+        if (middle == begin || middle == end) middle = begin + count / 2;
+
+        const std::uint32_t children = next_node.fetch_add(2);
+        node.first = children;
+        node.count = 0;
+        if (count > kParallelBelow)
+            tbb::parallel_invoke([&] { build(children, begin, middle); },
+                                 [&] { build(children + 1, middle, end); });
+        else
+            build(children, begin, middle), build(children + 1, middle, end);
+    }
+};
+
+} // namespace
+
+Bvh::Bvh(std::span<const Bounds> item_bounds) {
+    if (item_bounds.empty()) return;
+    items_.resize(item_bounds.size());
+    for (std::uint32_t i = 0; i < items_.size(); ++i) items_[i] = i;
+    nodes_.resize(2 * item_bounds.size()); // a binary tree with n leaves at most has 2n − 1 nodes
+    Builder builder{item_bounds, {}, items_, nodes_};
+    builder.centres.reserve(item_bounds.size());
+    for (const Bounds& b : item_bounds) builder.centres.push_back(b.centre());
+    builder.build(0, 0, static_cast<std::uint32_t>(item_bounds.size()));
+    nodes_.resize(builder.next_node.load());
+    nodes_.shrink_to_fit();
+}
+
+} // namespace glint

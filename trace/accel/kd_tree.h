@@ -1,0 +1,97 @@
+// kd-tree (binary space partitioning with axis-aligned planes), built by the surface area
+// heuristic; items straddling a plane go to both sides. Traversed front to back with a stack of
+// ray segments (pbrt-v3's KdTreeAccel).
+#pragma once
+
+#include "trace/accel/counters.h"
+#include "trace/bounds.h"
+
+#include <span>
+#include <vector>
+
+namespace glint {
+
+struct KdNode {
+    float split;         // inner: plane position on `axis`
+    std::uint32_t first; // inner: index of the below child (above = +1); leaf: first into items
+    std::uint32_t count; // leaf: number of items
+    std::uint8_t axis;   // 0, 1, 2; 3 for a leaf
+};
+
+class KdTree {
+  public:
+    KdTree() = default;
+    explicit KdTree(std::span<const Bounds> items);
+
+    std::size_t memory_bytes() const { return nodes_.size() * sizeof(KdNode) + items_.size() * 4; }
+    std::size_t node_count() const { return nodes_.size(); }
+
+    template <class Counters, class Visit>
+    void traverse(const Ray& ray, float& t_max, Counters& counters, Visit&& visit) const {
+        if (nodes_.empty()) return;
+        const Vec3 inverse_direction = 1.0f / ray.direction;
+        // The ray's segment inside the root box.
+        float t_min = 0, t_end = t_max;
+        for (int a = 0; a < 3; ++a) {
+            float t0 = (bounds_.lo[a] - ray.origin[a]) * inverse_direction[a];
+            float t1 = (bounds_.hi[a] - ray.origin[a]) * inverse_direction[a];
+            if (t0 > t1) std::swap(t0, t1);
+            t1 *= 1.0f + 2.0f * gamma(3);
+            if (t0 > t_min) t_min = t0;
+            if (t1 < t_end) t_end = t1;
+            if (!(t_min <= t_end)) return; // also when NaN from a ray in a face's plane
+        }
+        struct Segment {
+            std::uint32_t node;
+            float t_min, t_max;
+        } stack[128];
+        int top = 0;
+        std::uint32_t node = 0;
+        for (;;) {
+            if (t_max < t_min) { // the best hit lies before this segment
+                if (top == 0) return;
+                const Segment s = stack[--top];
+                node = s.node, t_min = s.t_min, t_end = s.t_max;
+                continue;
+            }
+            counters.node();
+            const KdNode& n = nodes_[node];
+            if (n.axis == 3) {
+                for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
+                    counters.primitive();
+                    if (visit(items_[i], t_max)) return;
+                }
+                if (top == 0) return;
+                const Segment s = stack[--top];
+                node = s.node, t_min = s.t_min, t_end = s.t_max;
+                continue;
+            }
+            const int a = n.axis;
+            const float o = ray.origin[a], d = ray.direction[a];
+            const bool below_first = o < n.split || (o == n.split && d <= 0);
+            const std::uint32_t first = below_first ? n.first : n.first + 1;
+            const std::uint32_t second = below_first ? n.first + 1 : n.first;
+            if (d == 0) { // parallel to the plane: only the origin's side
+                node = first;
+                continue;
+            }
+            const float t_plane = (n.split - o) * inverse_direction[a];
+            if (t_plane > t_end || t_plane <= 0) {
+                node = first;
+            } else if (t_plane < t_min) {
+                node = second;
+            } else {
+                stack[top++] = {second, t_plane, t_end};
+                node = first;
+                t_end = t_plane;
+            }
+        }
+    }
+
+  private:
+    Bounds bounds_;
+    std::vector<KdNode> nodes_;
+    std::vector<std::uint32_t> items_;
+};
+
+} // namespace glint
