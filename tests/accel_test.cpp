@@ -1,0 +1,164 @@
+// Every acceleration structure returns exactly the brute-force list's answers: the same closest
+// object, the same t to the bit, the same any-hit verdicts, on random scenes built to be hard
+// (thin and sheared transforms, duplicates that tie, coplanar flat sets, axis-parallel rays),
+// and renders that are byte-identical.
+#include "test_scenes.h"
+
+#include "trace/render.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace glint {
+namespace {
+
+// A random scene of `count` objects of every shape. Variants stress the structures' corners.
+Scene random_scene(unsigned seed, int count) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1), pos(0, 1);
+    Scene scene = parse_scene(
+        R"({"camera": {"eye": [0, 0, 12], "look_at": [0, 0, 0], "width": 8, "height": 8}})",
+        "random.json");
+    const int variant = static_cast<int>(seed % 4);
+    Mesh mesh;
+    for (int k = 0; k < 30; ++k) {
+        mesh.vertices.push_back(Vec3(u(rng), u(rng), u(rng)));
+        mesh.bounds.extend(mesh.vertices.back());
+    }
+    for (std::uint32_t k = 0; k + 2 < 30; k += 3) mesh.triangles.push_back({k, k + 1, k + 2});
+    scene.meshes.push_back(mesh);
+    if (seed % 5 == 0)
+        scene.objects.push_back(
+            {ShapeKind::plane, 0, rotation_matrix({u(rng), 1, u(rng)}, 30 * u(rng)), 0, 0});
+    for (int i = 0; i < count; ++i) {
+        SceneObject o;
+        o.shape = static_cast<ShapeKind>(rng() % 8);
+        if (o.shape == ShapeKind::plane) o.shape = ShapeKind::box;
+        o.top_radius = static_cast<float>(pos(rng) * (rng() % 2));
+        DMat4 linear(1.0);
+        if (variant == 1) { // thin: one axis squashed a thousandfold
+            linear = scale_matrix({0.5 + pos(rng), 1e-3, 0.5 + pos(rng)});
+        } else if (variant == 2) { // sheared
+            for (int c = 0; c < 3; ++c)
+                for (int r = 0; r < 3; ++r) linear[c][r] = (c == r ? 0.8 : 0.0) + 0.3 * u(rng);
+        } else {
+            linear = scale_matrix({0.2 + pos(rng), 0.2 + pos(rng), 0.2 + pos(rng)});
+        }
+        const DMat4 rotation =
+            variant == 3 ? DMat4(1.0) : rotation_matrix({u(rng), u(rng), 1}, 180 * u(rng));
+        // Variant 3: axis-aligned and on a coarse lattice, so faces share planes and boxes touch.
+        const DVec3 where = variant == 3 ? DVec3(std::round(4 * u(rng)), std::round(4 * u(rng)),
+                                                 std::round(4 * u(rng)))
+                                         : DVec3(5 * u(rng), 5 * u(rng), 5 * u(rng));
+        o.transform = translation_matrix(where) * rotation * linear;
+        if (why_unusable(o.transform)) o.transform = translation_matrix(where);
+        scene.objects.push_back(o);
+        if (rng() % 10 == 0) scene.objects.push_back(o); // an exact duplicate: every hit ties
+    }
+    return scene;
+}
+
+Ray random_ray(std::mt19937& rng) {
+    std::uniform_real_distribution<float> u(-1, 1);
+    Vec3 origin(7 * u(rng), 7 * u(rng), 7 * u(rng));
+    Vec3 direction(u(rng), u(rng), u(rng));
+    switch (rng() % 6) {
+    case 0:
+        direction = {0, 0, u(rng) < 0 ? -1.0f : 1.0f};
+        break; // axis-parallel: 1/d = ±inf
+    case 1:
+        direction.y = 0;
+        break; // parallel to a coordinate plane
+    case 2:
+        origin = {std::round(origin.x), std::round(origin.y), origin.z};
+        break; // on lattice planes
+    default:
+        break;
+    }
+    if (direction == Vec3(0.0f)) direction = {1, 0, 0};
+    return {origin, direction};
+}
+
+class AccelTest : public ::testing::TestWithParam<AccelKind> {};
+
+TEST_P(AccelTest, AgreesExactlyWithTheListOnAMillionRandomRays) {
+    const AccelKind kind = GetParam();
+    std::mt19937 rng(1234);
+    std::uint64_t rays = 0, hits = 0;
+    for (unsigned seed = 0; seed < 250; ++seed) {
+        Scene scene = random_scene(seed, 10 + static_cast<int>(seed % 7) * 15);
+        scene.camera.eye = {0, 0, 0};
+        scene.camera.look_at = {0, 0, -1};
+        const World list(scene, AccelKind::list);
+        const World other(scene, kind);
+        for (int k = 0; k < 4000; ++k, ++rays) {
+            const Ray ray = random_ray(rng);
+            const Hit expected = list.intersect(ray);
+            const Hit got = other.intersect(ray);
+            hits += expected.found();
+            ASSERT_EQ(got.object, expected.object)
+                << accel_name(kind) << " scene " << seed << " ray " << k;
+            ASSERT_EQ(got.t, expected.t) << accel_name(kind) << " scene " << seed << " ray " << k;
+            ASSERT_EQ(got.primitive, expected.primitive) << accel_name(kind) << " scene " << seed;
+            // Any-hit, up to half and twice the closest distance (or a random one on a miss).
+            const float t_max = expected.found() ? expected.t * (k % 2 ? 0.5f : 2.0f) : 20.0f;
+            ASSERT_EQ(other.occluded(ray, t_max), list.occluded(ray, t_max))
+                << accel_name(kind) << " scene " << seed;
+        }
+    }
+    EXPECT_EQ(rays, 1'000'000u);
+    EXPECT_GT(hits, rays / 10) << "too few hits to mean much";
+}
+
+TEST_P(AccelTest, RendersAreByteIdenticalToTheList) {
+    Scene scene = load_scene(GLINT_SOURCE_DIR "/scenes/default.json");
+    scene.camera.width = 120, scene.camera.height = 90;
+    EXPECT_EQ(render(World(scene, GetParam())).image.rgb,
+              render(World(scene, AccelKind::list)).image.rgb);
+    Scene crowd = random_scene(7, 300);
+    crowd.camera.width = 96, crowd.camera.height = 72;
+    crowd.lights.push_back({{5, 8, 6}, Vec3(1.0f)});
+    crowd.materials[0].reflectivity = 0.5f;
+    EXPECT_EQ(render(World(crowd, GetParam())).image.rgb,
+              render(World(crowd, AccelKind::list)).image.rgb);
+}
+
+TEST_P(AccelTest, HandlesEmptySingleAndDegenerateSets) {
+    Scene scene =
+        parse_scene(R"({"camera": {"eye": [0, 0, 0], "look_at": [0, 0, -1]}})", "empty.json");
+    EXPECT_FALSE(World(scene, GetParam()).intersect({Vec3(0.0f), {0, 0, -1}}).found());
+    scene.objects.push_back({ShapeKind::sphere, 0, translation_matrix({0, 0, -5}), 0, 0});
+    EXPECT_EQ(World(scene, GetParam()).intersect({Vec3(0.0f), {0, 0, -1}}).t, 4.0f);
+    // 50 identical spheres: every ray ties 50 ways, the lowest index must win.
+    for (int i = 0; i < 49; ++i) scene.objects.push_back(scene.objects[0]);
+    EXPECT_EQ(World(scene, GetParam()).intersect({Vec3(0.0f), {0, 0, -1}}).object, 0u);
+    // A flat set: 60 disks in one plane (bounds of zero thickness).
+    Scene flat =
+        parse_scene(R"({"camera": {"eye": [0, 0, 0], "look_at": [0, 0, -1]}})", "flat.json");
+    for (int i = 0; i < 60; ++i)
+        flat.objects.push_back(
+            {ShapeKind::disk, 0,
+             translation_matrix({i % 10 - 4.5, -2, -(i / 10) - 2.0}) * scale_matrix(DVec3(0.4)), 0,
+             0});
+    const World list(flat, AccelKind::list), other(flat, GetParam());
+    for (int i = 0; i < 200; ++i) {
+        const Ray ray{Vec3(0.0f), glm::normalize(Vec3(-0.9f + 0.009f * i, -0.3f, -1.0f))};
+        EXPECT_EQ(other.intersect(ray).object, list.intersect(ray).object);
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryStructure, AccelTest,
+                         ::testing::Values(AccelKind::bvh, AccelKind::spheres, AccelKind::grid,
+                                           AccelKind::kd),
+                         [](const auto& info) { return std::string(accel_name(info.param)); });
+
+TEST(Accel, DefaultIsTheListForSmallScenesAndABvhBeyond) {
+    const Scene small = random_scene(1, 5);
+    EXPECT_EQ(World(small).accelerator().kind(), AccelKind::list);
+    const Scene large = random_scene(1, 40);
+    EXPECT_EQ(World(large).accelerator().kind(), AccelKind::bvh);
+}
+
+} // namespace
+} // namespace glint
