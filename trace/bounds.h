@@ -4,6 +4,7 @@
 #include "trace/math.h"
 #include "trace/ray.h"
 
+#include <cmath>
 #include <utility>
 
 namespace glint {
@@ -54,5 +55,33 @@ inline float entry_distance(const Bounds& b, const Ray& ray, Vec3 inverse_direct
     }
     return t_near;
 }
+
+// A ray prepared for many box tests: branch-free slabs. Components of 1/direction that are
+// infinite (the ray is parallel to an axis) are replaced by ±1e30, so that a box face in the
+// ray's own plane gives 0·1e30 = 0 instead of 0·inf = NaN; beyond that magnitude the products
+// overflow to ±inf, as they should.
+struct SlabRay {
+    Vec3 origin;
+    Vec3 inverse_direction;
+
+    explicit SlabRay(const Ray& ray) : origin(ray.origin) {
+        for (int a = 0; a < 3; ++a) {
+            const float inv = 1.0f / ray.direction[a];
+            inverse_direction[a] = std::isinf(inv) ? std::copysign(1e30f, inv) : inv;
+        }
+    }
+
+    // Entry distance into b over [0, t_max], or infinity; the far distance is enlarged by 2γ3
+    // as in hits_bounds, so that the test stays conservative.
+    float entry(const Bounds& b, float t_max) const {
+        const Vec3 t0 = (b.lo - origin) * inverse_direction;
+        const Vec3 t1 = (b.hi - origin) * inverse_direction;
+        const Vec3 near = glm::min(t0, t1), far = glm::max(t0, t1);
+        const float t_near = std::max(std::max(near.x, near.y), std::max(near.z, 0.0f));
+        const float t_far =
+            std::min(std::min(std::min(far.x, far.y), far.z) * (1.0f + 2.0f * gamma(3)), t_max);
+        return t_near <= t_far ? t_near : kInfinity;
+    }
+};
 
 } // namespace glint

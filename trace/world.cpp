@@ -83,6 +83,9 @@ World::World(const Scene& scene, std::optional<AccelKind> accel)
             triangles.push_back(b);
         }
         mesh.bvh = Bvh(triangles);
+        mesh.corners.reserve(mesh.triangles.size());
+        for (const glm::uvec3& t : mesh.triangles)
+            mesh.corners.push_back({mesh.vertices[t.x], mesh.vertices[t.y], mesh.vertices[t.z]});
     }
     std::vector<Bounds> item_bounds;
     for (std::uint32_t i = 0; i < objects_.size(); ++i) {

@@ -30,12 +30,16 @@ class Bvh {
     template <class Counters, class Visit>
     void traverse(const Ray& ray, float& t_max, Counters& counters, Visit&& visit) const {
         if (nodes_.empty()) return;
-        const Vec3 inverse_direction = 1.0f / ray.direction;
-        std::uint32_t stack[128]; // SAH trees over float boxes stay far shallower
+        const SlabRay slab(ray);
+        struct Entry {
+            std::uint32_t node;
+            float t;  // where the ray enters the node's box
+        } stack[128]; // SAH trees over float boxes stay far shallower
         int top = 0;
-        std::uint32_t node = 0;
         counters.node();
-        if (entry_distance(nodes_[0].bounds, ray, inverse_direction, t_max) == kInfinity) return;
+        float t_root = slab.entry(nodes_[0].bounds, t_max);
+        if (t_root == kInfinity) return;
+        std::uint32_t node = 0;
         for (;;) {
             const BvhNode& n = nodes_[node];
             if (n.count > 0) {
@@ -46,25 +50,22 @@ class Bvh {
             } else {
                 counters.node();
                 counters.node();
-                float near = entry_distance(nodes_[n.first].bounds, ray, inverse_direction, t_max);
-                float far =
-                    entry_distance(nodes_[n.first + 1].bounds, ray, inverse_direction, t_max);
+                float near = slab.entry(nodes_[n.first].bounds, t_max);
+                float far = slab.entry(nodes_[n.first + 1].bounds, t_max);
                 std::uint32_t near_node = n.first, far_node = n.first + 1;
                 if (far < near) std::swap(near, far), std::swap(near_node, far_node);
                 if (near != kInfinity) {
-                    if (far != kInfinity) stack[top++] = far_node; // may be pruned when popped
+                    if (far != kInfinity) stack[top++] = {far_node, far};
                     node = near_node;
                     continue;
                 }
             }
-            // Pop the next subtree still in reach of the current t_max.
-            for (;;) {
+            // The next pushed subtree the ray still reaches before the best hit so far.
+            do {
                 if (top == 0) return;
-                node = stack[--top];
-                counters.node();
-                if (entry_distance(nodes_[node].bounds, ray, inverse_direction, t_max) != kInfinity)
-                    break;
-            }
+                --top;
+            } while (stack[top].t > t_max);
+            node = stack[top].node;
         }
     }
 

@@ -5,6 +5,7 @@
 #include "trace/bounds.h"
 #include "trace/shapes/shape.h"
 
+#include <array>
 #include <vector>
 
 namespace glint {
@@ -14,6 +15,9 @@ struct Mesh {
     std::vector<glm::uvec3> triangles; // indices into vertices
     Bounds bounds;                     // of the vertices, object space
     Bvh bvh;                           // over the triangles, object space; built by World
+    // The three corners of each triangle side by side (built by World with the BVH): one load
+    // per triangle instead of an index and three scattered vertices.
+    std::vector<std::array<Vec3, 3>> corners;
 };
 
 struct TriangleHit {
@@ -21,22 +25,47 @@ struct TriangleHit {
     float u = 0, v = 0; // barycentric weights of vertices 1 and 2
 };
 
-// Möller–Trumbore. Hits on a shared edge may be found by both triangles or, through rounding,
-// by neither; a watertight test (Woop et al. 2013) is the planned replacement.
-inline TriangleHit intersect_triangle(Vec3 p0, Vec3 p1, Vec3 p2, const Ray& ray) {
-    const Vec3 e1 = p1 - p0;
-    const Vec3 e2 = p2 - p0;
-    const Vec3 pv = glm::cross(ray.direction, e2);
-    const float det = glm::dot(e1, pv);
+// A ray prepared for the watertight test (Woop, Benthin & Wald, JCGT 2013): the axis of its
+// largest direction component becomes z, and a shear makes the ray the +z axis, so that each
+// triangle is tested in 2D with edge functions that neighbouring triangles compute identically:
+// a ray through a shared edge hits one of them, never neither. Computed once per ray.
+struct WatertightRay {
+    Vec3 origin;
+    int kx, ky, kz;
+    float sx, sy, sz;
+
+    explicit WatertightRay(const Ray& ray) : origin(ray.origin) {
+        const Vec3 a = glm::abs(ray.direction);
+        kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
+        kx = (kz + 1) % 3;
+        ky = (kx + 1) % 3;
+        if (ray.direction[kz] < 0) std::swap(kx, ky); // keep the winding
+        sx = ray.direction[kx] / ray.direction[kz];
+        sy = ray.direction[ky] / ray.direction[kz];
+        sz = 1.0f / ray.direction[kz];
+    }
+};
+
+inline TriangleHit intersect_triangle(Vec3 p0, Vec3 p1, Vec3 p2, const WatertightRay& r) {
+    const Vec3 a = p0 - r.origin, b = p1 - r.origin, c = p2 - r.origin;
+    const float ax = a[r.kx] - r.sx * a[r.kz], ay = a[r.ky] - r.sy * a[r.kz];
+    const float bx = b[r.kx] - r.sx * b[r.kz], by = b[r.ky] - r.sy * b[r.kz];
+    const float cx = c[r.kx] - r.sx * c[r.kz], cy = c[r.ky] - r.sy * c[r.kz];
+    float u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
+    if (u == 0 || v == 0 || w == 0) { // on an edge in float: decide in double, as the paper does
+        u = static_cast<float>(double(cx) * by - double(cy) * bx);
+        v = static_cast<float>(double(ax) * cy - double(ay) * cx);
+        w = static_cast<float>(double(bx) * ay - double(by) * ax);
+    }
+    if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return {};
+    const float det = u + v + w;
     if (det == 0) return {};
-    const float inverse_det = 1.0f / det;
-    const Vec3 tv = ray.origin - p0;
-    const float u = glm::dot(tv, pv) * inverse_det;
-    if (!(u >= 0.0f && u <= 1.0f)) return {};
-    const Vec3 qv = glm::cross(tv, e1);
-    const float v = glm::dot(ray.direction, qv) * inverse_det;
-    if (!(v >= 0.0f && u + v <= 1.0f)) return {};
-    return {glm::dot(e2, qv) * inverse_det, u, v};
+    const float t = (u * r.sz * a[r.kz] + v * r.sz * b[r.kz] + w * r.sz * c[r.kz]) / det;
+    return {t, v / det, w / det};
+}
+
+inline TriangleHit intersect_triangle(Vec3 p0, Vec3 p1, Vec3 p2, const Ray& ray) {
+    return intersect_triangle(p0, p1, p2, WatertightRay(ray));
 }
 
 // The nearest triangle: through the mesh's own BVH (the bottom level of a two-level structure),
