@@ -4,6 +4,9 @@
 #include <CLI/CLI.hpp>
 
 #include <functional>
+#include <memory>
+#include <string>
+#include <vector>
 
 namespace glint {
 
@@ -14,6 +17,7 @@ struct Command {
 
 Command add_render_command(CLI::App& app);
 Command add_compare_command(CLI::App& app);
+Command add_bench_command(CLI::App& app);
 Command add_info_command(CLI::App& app);
 
 } // namespace glint

@@ -10,7 +10,7 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", std::string(GLINT_VERSION));
     const glint::Command commands[] = {glint::add_render_command(app),
                                        glint::add_compare_command(app),
-                                       glint::add_info_command(app)};
+                                       glint::add_bench_command(app), glint::add_info_command(app)};
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
