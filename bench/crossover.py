@@ -54,6 +54,7 @@ def main() -> None:
     parser.add_argument("--sizes", default="400x300,800x600,1920x1080")
     parser.add_argument("--settings", default="mesh:exact,mesh:trust,proxy:exact,proxy:trust")
     parser.add_argument("--scenes", nargs="*", help="scene files to use instead of generated ones")
+    parser.add_argument("--accel", default="auto", help="acceleration structure for both modes")
     args = parser.parse_args()
     print("| scene | objects | size | raster | resolve | ray s | hybrid s | primary visibility hybrid/ray |"
           " whole frame hybrid/ray | id agreement | pixels > 1/255 |")
@@ -73,7 +74,7 @@ def main() -> None:
                     raster, resolve = setting.split(":")
                     out = Path(tmp) / "compare.json"
                     subprocess.run([args.glint, "compare", str(path), "--size", size, "--raster", raster,
-                                    "--resolve", resolve, "--json", str(out)], check=True, stdout=subprocess.DEVNULL)
+                                    "--resolve", resolve, "--accel", args.accel, "--json", str(out)], check=True, stdout=subprocess.DEVNULL)
                     d = json.loads(out.read_text())
                     print(f"| {path.stem} | {count} | {size} | {raster} | {resolve} | {d['ray']['seconds']:.3f} |"
                           f" {d['hybrid']['seconds']:.3f} | {d['primary_ratio']:.2f} | {d['frame_ratio']:.2f} |"
