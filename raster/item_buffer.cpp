@@ -47,6 +47,7 @@ GLuint link(const char* vertex, const char* fragment) {
     if (!ok) {
         char log[2048];
         glGetProgramInfoLog(program, sizeof log, nullptr, log);
+        glDeleteProgram(program);
         throw GlError(std::string("shader linking failed: ") + log);
     }
     return program;

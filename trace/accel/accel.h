@@ -33,10 +33,10 @@ struct ItemList {
 
     template <class Counters, class Visit>
     void traverse(const Ray& ray, float& t_max, Counters& counters, Visit&& visit) const {
-        const Vec3 inverse_direction = 1.0f / ray.direction;
+        const SlabRay slab(ray);
         for (std::uint32_t i = 0; i < bounds.size(); ++i) {
             counters.node();
-            if (!hits_bounds(bounds[i], ray, inverse_direction, t_max)) continue;
+            if (!slab.hits(bounds[i], t_max)) continue;
             counters.primitive();
             if (visit(i, t_max)) return;
         }

@@ -25,8 +25,9 @@ class UniformGrid {
     template <class Counters, class Visit>
     void traverse(const Ray& ray, float& t_max, Counters& counters, Visit&& visit) const {
         if (cell_start_.empty()) return;
-        const Vec3 inverse_direction = 1.0f / ray.direction;
-        const float t_enter = entry_distance(bounds_, ray, inverse_direction, t_max);
+        const SlabRay slab(ray);
+        const Vec3& inverse_direction = slab.inverse_direction;
+        const float t_enter = slab.entry(bounds_, t_max);
         if (t_enter == kInfinity) return;
         const Vec3 p = ray.origin + t_enter * ray.direction;
         glm::ivec3 cell, step;

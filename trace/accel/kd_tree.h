@@ -29,18 +29,10 @@ class KdTree {
     template <class Counters, class Visit>
     void traverse(const Ray& ray, float& t_max, Counters& counters, Visit&& visit) const {
         if (nodes_.empty()) return;
-        const Vec3 inverse_direction = 1.0f / ray.direction;
-        // The ray's segment inside the root box.
-        float t_min = 0, t_end = t_max;
-        for (int a = 0; a < 3; ++a) {
-            float t0 = (bounds_.lo[a] - ray.origin[a]) * inverse_direction[a];
-            float t1 = (bounds_.hi[a] - ray.origin[a]) * inverse_direction[a];
-            if (t0 > t1) std::swap(t0, t1);
-            t1 *= 1.0f + 2.0f * gamma(3);
-            if (t0 > t_min) t_min = t0;
-            if (t1 < t_end) t_end = t1;
-            if (!(t_min <= t_end)) return; // also when NaN from a ray in a face's plane
-        }
+        const SlabRay slab(ray);
+        const Vec3& inverse_direction = slab.inverse_direction;
+        float t_min, t_end; // the ray's segment inside the root box
+        if (!slab.clip(bounds_, t_max, t_min, t_end)) return;
         struct Segment {
             std::uint32_t node;
             float t_min, t_max;

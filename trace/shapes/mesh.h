@@ -84,7 +84,7 @@ ShapeHit intersect_mesh(const Mesh& mesh, const Ray& ray, float t_max, Counters&
     if (!mesh.bvh.nodes().empty()) {
         mesh.bvh.traverse(ray, limit, counters, test);
     } else {
-        if (!hits_bounds(mesh.bounds, ray, 1.0f / ray.direction, t_max)) return {};
+        if (!SlabRay(ray).hits(mesh.bounds, t_max)) return {};
         for (std::uint32_t i = 0; i < mesh.triangles.size(); ++i)
             counters.primitive(), test(i, limit);
     }
