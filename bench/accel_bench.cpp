@@ -194,13 +194,7 @@ const World& terrain_world() {
 }
 
 void MeshBuild(benchmark::State& state) {
-    std::vector<Bounds> triangles;
-    for (const glm::uvec3& t : terrain().mesh.triangles) {
-        Bounds b;
-        b.extend(terrain().mesh.vertices[t.x]), b.extend(terrain().mesh.vertices[t.y]),
-            b.extend(terrain().mesh.vertices[t.z]);
-        triangles.push_back(b);
-    }
+    const std::vector<Bounds> triangles = triangle_bounds(terrain().mesh);
     for (auto _ : state) benchmark::DoNotOptimize(Bvh(triangles));
     state.SetLabel(std::to_string(triangles.size()) + " triangles");
 }

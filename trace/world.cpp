@@ -70,23 +70,7 @@ World::World(const Scene& scene, std::optional<AccelKind> accel)
         lights_.push_back({Vec3(light.position - scene.camera.eye), light.color});
 
     const auto start = std::chrono::steady_clock::now();
-    // Two levels: each mesh gets a BVH over its triangles (object space), so that to the top
-    // level a mesh of a million triangles is one object.
-    for (Mesh& mesh : meshes_) {
-        if (mesh.triangles.size() <= 8) continue;
-        std::vector<Bounds> triangles;
-        triangles.reserve(mesh.triangles.size());
-        for (const glm::uvec3& t : mesh.triangles) {
-            Bounds b;
-            b.extend(mesh.vertices[t.x]), b.extend(mesh.vertices[t.y]),
-                b.extend(mesh.vertices[t.z]);
-            triangles.push_back(b);
-        }
-        mesh.bvh = Bvh(triangles);
-        mesh.corners.reserve(mesh.triangles.size());
-        for (const glm::uvec3& t : mesh.triangles)
-            mesh.corners.push_back({mesh.vertices[t.x], mesh.vertices[t.y], mesh.vertices[t.z]});
-    }
+    for (Mesh& mesh : meshes_) prepare_mesh(mesh);
     std::vector<Bounds> item_bounds;
     for (std::uint32_t i = 0; i < objects_.size(); ++i) {
         if (!objects_[i].bounded) {

@@ -14,11 +14,23 @@ struct Mesh {
     std::vector<Vec3> vertices;
     std::vector<glm::uvec3> triangles; // indices into vertices
     Bounds bounds;                     // of the vertices, object space
-    Bvh bvh;                           // over the triangles, object space; built by World
-    // The three corners of each triangle side by side (built by World with the BVH): one load
-    // per triangle instead of an index and three scattered vertices.
+    Bvh bvh;                           // over the triangles, object space; see prepare_mesh
+    // The three corners of each triangle side by side (see prepare_mesh): one load per
+    // triangle instead of an index and three scattered vertices.
     std::vector<std::array<Vec3, 3>> corners;
 };
+
+// Each triangle's box, object space.
+inline std::vector<Bounds> triangle_bounds(const Mesh& mesh) {
+    std::vector<Bounds> boxes;
+    boxes.reserve(mesh.triangles.size());
+    for (const glm::uvec3& t : mesh.triangles) {
+        Bounds b;
+        b.extend(mesh.vertices[t.x]), b.extend(mesh.vertices[t.y]), b.extend(mesh.vertices[t.z]);
+        boxes.push_back(b);
+    }
+    return boxes;
+}
 
 struct TriangleHit {
     float t = kInfinity;
@@ -68,15 +80,25 @@ inline TriangleHit intersect_triangle(Vec3 p0, Vec3 p1, Vec3 p2, const Ray& ray)
     return intersect_triangle(p0, p1, p2, WatertightRay(ray));
 }
 
+// Builds what intersect_mesh reads: every triangle's corners, and above 8 triangles a BVH
+// over them (the bottom level of a two-level structure: to the top level a mesh is one object).
+inline void prepare_mesh(Mesh& mesh) {
+    mesh.corners.clear();
+    mesh.corners.reserve(mesh.triangles.size());
+    for (const glm::uvec3& t : mesh.triangles)
+        mesh.corners.push_back({mesh.vertices[t.x], mesh.vertices[t.y], mesh.vertices[t.z]});
+    if (mesh.triangles.size() > 8) mesh.bvh = Bvh(triangle_bounds(mesh));
+}
+
 // The nearest triangle: through the mesh's own BVH (the bottom level of a two-level structure),
 // or, for meshes too small to have one, all of them.
 template <class Counters>
 ShapeHit intersect_mesh(const Mesh& mesh, const Ray& ray, float t_max, Counters& counters) {
     ShapeHit best;
+    const WatertightRay prepared(ray); // once per ray, not per triangle
     const auto test = [&](std::uint32_t i, float& limit) {
-        const glm::uvec3 tri = mesh.triangles[i];
-        const TriangleHit h = intersect_triangle(mesh.vertices[tri.x], mesh.vertices[tri.y],
-                                                 mesh.vertices[tri.z], ray);
+        const std::array<Vec3, 3>& c = mesh.corners[i];
+        const TriangleHit h = intersect_triangle(c[0], c[1], c[2], prepared);
         if (h.t > 0 && h.t < limit && h.t < best.t) best = {h.t, i}, limit = h.t;
         return false;
     };
