@@ -15,7 +15,6 @@ struct Bounds {
 
     void extend(Vec3 p) { lo = glm::min(lo, p), hi = glm::max(hi, p); }
     void extend(const Bounds& b) { lo = glm::min(lo, b.lo), hi = glm::max(hi, b.hi); }
-    bool empty() const { return lo.x > hi.x; }
     Vec3 centre() const { return 0.5f * (lo + hi); }
     float area() const { // surface area, for the SAH
         const Vec3 d = glm::max(hi - lo, Vec3(0.0f));

@@ -20,7 +20,6 @@ class UniformGrid {
 
     std::size_t memory_bytes() const { return (cell_start_.size() + cell_items_.size()) * 4; }
     std::size_t node_count() const { return cell_start_.empty() ? 0 : cell_start_.size() - 1; }
-    glm::ivec3 resolution() const { return resolution_; }
 
     template <class Counters, class Visit>
     void traverse(const Ray& ray, float& t_max, Counters& counters, Visit&& visit) const {

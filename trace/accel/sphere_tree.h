@@ -23,7 +23,6 @@ class SphereTree {
         return topology_.memory_bytes() + spheres_.size() * sizeof(BoundingSphere);
     }
     std::size_t node_count() const { return spheres_.size(); }
-    const std::vector<BoundingSphere>& spheres() const { return spheres_; }
 
     // Entry distance into a sphere over [0, t_max], or infinity.
     static float entry_distance(const BoundingSphere& s, const Ray& ray, float t_max) {
