@@ -10,8 +10,6 @@ namespace {
 
 constexpr int kBins = 16;
 constexpr std::uint32_t kMaxLeafSize = 8;
-// SAH costs relative to one item test: visiting a node tests two child boxes.
-constexpr float kTraversalCost = 1.0f;
 constexpr std::uint32_t kParallelBelow = 4096; // subtrees smaller than this are built serially
 
 struct Builder {
@@ -77,7 +75,8 @@ struct Builder {
                 if (cost < best_cost) best_cost = cost, best_axis = axis, best_split = b;
             }
         }
-        // A leaf costs one test per item; a split one box test plus the children's expected tests.
+        // A leaf costs one test per item; a split its children's expected tests (the box tests of
+        // the split are left out, which favours splitting; leaves stay small either way).
         const float leaf_cost = box.area() * count;
         if (count <= kMaxLeafSize && (best_axis < 0 || best_cost >= leaf_cost))
             return leaf(node, begin, end);
