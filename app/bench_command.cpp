@@ -13,7 +13,9 @@ Command add_bench_command(CLI::App& app) {
     CLI::App* cmd =
         app.add_subcommand("bench", "Run the benchmarks (Google Benchmark flags pass through)");
     cmd->allow_extras();
-    return {cmd, [cmd, arguments] {
+    // Its flags belong to Google Benchmark, which checks them itself.
+    return {cmd, [] {},
+            [cmd, arguments] {
                 const std::string binary = GLINT_BENCH_BINARY;
                 if (!std::filesystem::exists(binary)) {
                     std::fprintf(

@@ -11,7 +11,10 @@
 namespace glint {
 
 struct Command {
-    CLI::App* cli;            // the subcommand, to ask whether it was chosen
+    CLI::App* cli; // the subcommand, to ask whether it was chosen
+    // Validates everything the command was given (flags, scene, output paths, memory), without
+    // rendering or writing output; throws UsageError or SceneError. `run` does it first too.
+    std::function<void()> check;
     std::function<int()> run; // runs it after parsing; returns the exit code
 };
 
@@ -19,5 +22,16 @@ Command add_render_command(CLI::App& app);
 Command add_compare_command(CLI::App& app);
 Command add_bench_command(CLI::App& app);
 Command add_info_command(CLI::App& app);
+
+// The whole command line: `glint` and its subcommands. main() and the command-line fuzzer
+// (fuzz/cli_fuzzer.cpp) build it the same way.
+struct Cli {
+    CLI::App app{"glint: a hybrid item-buffer / ray-tracing renderer (Ray Tracing III)"};
+    std::vector<Command> commands;
+
+    Cli();
+    // The chosen subcommand after a successful app.parse().
+    const Command& chosen() const;
+};
 
 } // namespace glint

@@ -28,10 +28,17 @@ std::string seconds(double s) {
     return text;
 }
 
-int run_compare(const CompareArgs& args) {
+// Every check on the input, before anything is rendered or written; returns the scene.
+Scene prepare(const CompareArgs& args) {
     if (!args.prefix.empty()) check_output(args.prefix + "-ray.png", "-o");
     if (!args.json.empty()) check_output(args.json, "--json");
-    const Scene scene = args.scene.load();
+    Scene scene = args.scene.load();
+    check_frame_memory(scene.camera, Mode::hybrid, 2); // both frames are kept to compare them
+    return scene;
+}
+
+int run_compare(const CompareArgs& args) {
+    const Scene scene = prepare(args);
     const World world(scene, args.scene.accel_kind());
 
     FrameSettings settings = args.frame.settings();
@@ -140,7 +147,8 @@ Command add_compare_command(CLI::App& app) {
     cmd->add_option("-o,--output", args->prefix,
                     "Write PREFIX-ray.png, -hybrid.png, -diff.png and -ids.png");
     cmd->add_option("--json", args->json, "Also write the measurements as JSON here");
-    return {cmd, [args] { return guarded([&] { return run_compare(*args); }); }};
+    return {cmd, [args] { prepare(*args); },
+            [args] { return guarded([&] { return run_compare(*args); }); }};
 }
 
 } // namespace glint

@@ -13,7 +13,8 @@ namespace glint {
 
 Command add_info_command(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand("info", "Show version, build and threading facts");
-    return {cmd, [] {
+    return {cmd, [] {},
+            [] {
                 std::printf("glint %s (%s build)\n", GLINT_VERSION, GLINT_BUILD_TYPE);
                 std::printf("threads: %d (oneTBB %d.%d)\n", tbb::this_task_arena::max_concurrency(),
                             TBB_VERSION_MAJOR, TBB_VERSION_MINOR);

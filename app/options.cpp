@@ -2,8 +2,14 @@
 
 #include "trace/scene_loader.h"
 
+#include <cerrno>
+#include <cstring>
+#include <fstream>
 #include <iostream>
 #include <regex>
+
+#include <sys/resource.h>
+#include <unistd.h>
 
 namespace glint {
 
@@ -97,10 +103,72 @@ std::string FrameOptions::describe() const {
 
 void check_output(const fs::path& path, const std::string& flag) {
     const fs::path dir = path.has_parent_path() ? path.parent_path() : ".";
-    if (!fs::is_directory(dir))
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec))
         throw UsageError(flag + " " + path.string() + ": directory " + dir.string() +
                          " does not exist");
-    if (fs::is_directory(path)) throw UsageError(flag + " " + path.string() + ": is a directory");
+    if (fs::is_directory(path, ec))
+        throw UsageError(flag + " " + path.string() + ": is a directory");
+    // Permissions alone do not tell (root, read-only mounts, /proc): make a file and remove it.
+    std::string probe = (dir / ".glint-probe-XXXXXX").string();
+    const int fd = mkstemp(probe.data());
+    if (fd < 0)
+        throw UsageError(flag + " " + path.string() + ": cannot write in " + dir.string() + ": " +
+                         std::strerror(errno));
+    ::close(fd);
+    ::unlink(probe.c_str());
+}
+
+void create_output_directory(const fs::path& output) {
+    std::error_code ec;
+    if (output.has_parent_path() && !fs::create_directories(output.parent_path(), ec) && ec)
+        throw UsageError("cannot create the output directory " + output.parent_path().string() +
+                         ": " + ec.message() + " (choose another place with -o)");
+}
+
+std::uint64_t frame_memory_bytes(int width, int height, Mode mode) {
+    // Per pixel, from what a frame holds: primary hits (12 B), the 8-bit image (3 B) and its PNG
+    // encoding (~3 B); hybrid adds the read-back ids, depths and primitives (16 B) and the GL
+    // side: llvmpipe's id and depth attachments and the pixel-pack buffer (~24 B). Checked
+    // against peak resident memory in docs/SCENES.md ("Limits").
+    const std::uint64_t per_pixel = mode == Mode::hybrid ? 64 : 24;
+    return static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) * per_pixel;
+}
+
+namespace {
+
+// Bytes this process may still allocate: MemAvailable, or the address-space limit if lower.
+std::optional<std::uint64_t> available_memory_bytes() {
+    std::optional<std::uint64_t> available;
+    std::ifstream meminfo("/proc/meminfo");
+    std::string key;
+    std::uint64_t kib = 0;
+    std::string unit;
+    while (meminfo >> key >> kib >> unit)
+        if (key == "MemAvailable:") available = kib * 1024;
+    rlimit limit{};
+    if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
+        available = std::min<std::uint64_t>(available.value_or(UINT64_MAX), limit.rlim_cur);
+    return available;
+}
+
+std::string gib(std::uint64_t bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f GiB", static_cast<double>(bytes) / (1u << 30));
+    return text;
+}
+
+} // namespace
+
+void check_frame_memory(const Camera& camera, Mode mode, int frames) {
+    const std::uint64_t needed = frames * frame_memory_bytes(camera.width, camera.height, mode);
+    const std::optional<std::uint64_t> available = available_memory_bytes();
+    if (available && needed > *available)
+        throw UsageError("a " + std::to_string(camera.width) + "x" + std::to_string(camera.height) +
+                         " image needs about " + gib(needed) +
+                         (mode == Mode::hybrid ? " in hybrid mode" : "") + ", but only " +
+                         gib(*available) + " of memory is available: render it smaller (--size)" +
+                         (mode == Mode::hybrid ? " or with --mode ray" : ""));
 }
 
 int guarded(const std::function<int()>& body) {

@@ -51,8 +51,20 @@ struct FrameOptions {
     std::string describe() const;
 };
 
-// An output file must be creatable: its directory exists and it is not itself a directory.
+// An output file must be creatable: its directory exists and takes a new file (a probe file is
+// made and removed), and the path is not itself a directory. UsageError otherwise.
 void check_output(const std::filesystem::path& path, const std::string& flag);
+
+// Creates the directory that the default output goes to (out/); UsageError when it cannot.
+void create_output_directory(const std::filesystem::path& output);
+
+// Refuses, before anything is allocated, a frame that would not fit in the memory this process
+// may use (MemAvailable, or a lower address-space limit): UsageError naming the size.
+// `frames`: how many frames of this size are alive at once.
+void check_frame_memory(const Camera& camera, Mode mode, int frames);
+
+// Bytes one frame of `width` × `height` uses at its peak, roughly (measured; see options.cpp).
+std::uint64_t frame_memory_bytes(int width, int height, Mode mode);
 
 // Runs a command body, turning exceptions into glint's exit codes and one-line messages:
 // bad input 2, anything else 1.

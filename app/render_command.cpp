@@ -22,20 +22,33 @@ struct RenderArgs {
     std::string stats;
 };
 
+// What a render needs once its input has been checked.
+struct RenderJob {
+    fs::path scene_path;
+    fs::path output;
+    Scene scene;
+};
+
+// Every check on the input, before anything is rendered or written.
+RenderJob prepare(const RenderArgs& args) {
+    RenderJob job{args.scene.scene_path(), args.output, {}};
+    if (job.output.empty()) job.output = fs::path("out") / job.scene_path.stem().concat(".png");
+    if (job.output.extension() != ".png")
+        throw UsageError("-o " + job.output.string() + ": glint writes PNG files (.png)");
+    if (args.output.empty()) create_output_directory(job.output);
+    check_output(job.output, "-o");
+    if (!args.stats.empty()) check_output(args.stats, "--stats");
+    job.scene = args.scene.load();
+    check_frame_memory(job.scene.camera, args.frame.settings().mode, 1);
+    return job;
+}
+
 int run_render(const RenderArgs& args) {
     const auto start = std::chrono::steady_clock::now();
-    const fs::path scene_path = args.scene.scene_path();
-    fs::path output = args.output;
-    if (output.empty()) {
-        output = fs::path("out") / scene_path.stem().concat(".png");
-        fs::create_directories(output.parent_path());
-    }
-    if (output.extension() != ".png")
-        throw UsageError("-o " + output.string() + ": glint writes PNG files (.png)");
-    check_output(output, "-o");
-    if (!args.stats.empty()) check_output(args.stats, "--stats");
-
-    const Scene scene = args.scene.load();
+    const RenderJob job = prepare(args);
+    const Scene& scene = job.scene;
+    const fs::path& scene_path = job.scene_path;
+    const fs::path& output = job.output;
     const double load_seconds = seconds_since(start);
     const auto prepare_start = std::chrono::steady_clock::now();
     World world(scene, args.scene.accel_kind());
@@ -134,7 +147,8 @@ Command add_render_command(CLI::App& app) {
     args->frame.add_to(*cmd, true);
     cmd->add_option("--stats", args->stats,
                     "Also write timings per phase and ray counts as JSON here");
-    return {cmd, [args] { return guarded([&] { return run_render(*args); }); }};
+    return {cmd, [args] { prepare(*args); },
+            [args] { return guarded([&] { return run_render(*args); }); }};
 }
 
 } // namespace glint

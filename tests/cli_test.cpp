@@ -154,14 +154,20 @@ TEST(Cli, OutputIntoAMissingDirectoryOrNotPngIsAnError) {
     EXPECT_NE(r.err.find("glint writes PNG files"), std::string::npos) << r.err;
 }
 
-TEST(Cli, AnOutputThatCannotBeWrittenIsARuntimeError) {
+TEST(Cli, AnUnwritablePlaceIsRefusedBeforeRendering) {
     // /proc accepts no new files, even from root (CI runs as root, so a read-only directory
-    // would not do).
+    // would not do). Every output flag of every command is checked before any work.
     const fs::path dir = fresh_dir();
-    const Outcome r = glint(dir, "render --size 8x6 -o /proc/glint-test.png");
-    EXPECT_EQ(r.exit_code, 1);
-    EXPECT_NE(r.err.find("cannot write /proc/glint-test.png"), std::string::npos) << r.err;
-    EXPECT_FALSE(fs::exists("/proc/glint-test.png"));
+    for (const char* args : {"render --size 8x6 -o /proc/glint-test.png",
+                             "render --size 8x6 -o a.png --stats /proc/glint-test.json",
+                             "compare --size 8x6 -o /proc/glint-test",
+                             "compare --size 8x6 --json /proc/glint-test.json"}) {
+        const Outcome r = glint(dir, args);
+        EXPECT_EQ(r.exit_code, 2) << args;
+        EXPECT_NE(r.err.find("cannot write in /proc"), std::string::npos) << r.err;
+        EXPECT_EQ(r.out, "") << args;
+    }
+    EXPECT_FALSE(fs::exists(dir / "a.png"));
 }
 
 TEST(Cli, NoGlContextIsAClearErrorNamingRayMode) {
