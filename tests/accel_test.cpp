@@ -124,6 +124,27 @@ TEST_P(AccelTest, RendersAreByteIdenticalToTheList) {
               render(World(crowd, AccelKind::list)).image.rgb);
 }
 
+TEST_P(AccelTest, RendersAreByteIdenticalToTheListAtTheEdgeOfTheCoordinateRange) {
+    // Objects reaching ±1e15, the largest extent the loader accepts, beside unit spheres. Beyond
+    // it (a 1e15 vertex scaled by 1e15, found while looking for overflow by hand) squared radii
+    // overflow float and the sphere tree lost hits; the loader now refuses such objects.
+    std::string objects;
+    for (int i = 0; i < 20; ++i)
+        objects += R"({"shape": "sphere", "transform": [{"translate": [)" + std::to_string(i) +
+                   ", 0, " + std::to_string(-i) + "]}]},";
+    const Scene scene =
+        parse_scene(R"({"camera": {"width": 64, "height": 48, "eye": [0, 0, -9.9e14]},
+        "lights": [{"position": [1e15, 1e15, 1e15]}], "objects": [)" +
+                        objects + R"(
+        {"shape": "mesh", "vertices": [[1e15, 0, 0], [0, 1e15, 0], [0, 0, -1e15]], "indices": [0, 1, 2]},
+        {"shape": "sphere", "transform": [{"scale": 4e14}, {"translate": [5e14, 0, 0]}]},
+        {"shape": "box", "transform": [{"scale": [1e15, 1e-3, 1e15]}, {"translate": [0, -3, 0]}]}]})",
+                    "far.json");
+    const RenderResult list = render(World(scene, AccelKind::list));
+    EXPECT_GT(list.rays.shadow, list.rays.primary / 4) << "the scene should fill the image";
+    EXPECT_EQ(render(World(scene, GetParam())).image.rgb, list.image.rgb);
+}
+
 TEST_P(AccelTest, HandlesEmptySingleAndDegenerateSets) {
     Scene scene =
         parse_scene(R"({"camera": {"eye": [0, 0, 0], "look_at": [0, 0, -1]}})", "empty.json");

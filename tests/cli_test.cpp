@@ -125,6 +125,9 @@ INSTANTIATE_TEST_SUITE_P(EveryClass, BadRunTest, ::testing::Values(
     BadRun{"singular transform", R"({"objects": [{"shape": "box", "transform": [{"matrix": [[1,2,3,0],[2,4,6,0],[0,0,1,0],[0,0,0,1]]}]}]})", "render scene.json", "/objects/0/transform: transform is singular"},
     BadRun{"missing scene file", "", "render nowhere.json", "nowhere.json: cannot open scene file"},
     BadRun{"scene is a directory", "", "render .", ".: is a directory"},
+    BadRun{"endless scene file", "", "render /dev/zero", "/dev/zero: scene file is larger than allowed; the limit is 64 MiB"},
+    BadRun{"nesting too deep", R"({"objects": [[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]})",
+           "render scene.json", "scene.json:1:44: JSON nested deeper than 32 levels"},
     BadRun{"bad size", "", "render --size 64by48", "--size 64by48: expected WIDTHxHEIGHT"},
     BadRun{"size too large", "", "render --size 99999x10", "each side must be 1 to 16384"},
     BadRun{"negative depth", "", "render --max-depth -1", "--max-depth"},
@@ -168,6 +171,27 @@ TEST(Cli, AnUnwritablePlaceIsRefusedBeforeRendering) {
         EXPECT_EQ(r.out, "") << args;
     }
     EXPECT_FALSE(fs::exists(dir / "a.png"));
+}
+
+TEST(Cli, AnImageLargerThanMemoryIsRefusedBeforeAllocating) {
+#ifdef GLINT_SANITIZE
+    GTEST_SKIP() << "AddressSanitizer reserves terabytes of address space: no ulimit -v under it";
+#else
+    // 16384² pixels need ~6 GiB in ray mode and ~16 GiB in hybrid mode; an address-space limit
+    // of 4 GiB stands in for a small machine. The refusal comes at once, before any work.
+    const fs::path dir = fresh_dir();
+    for (const char* mode : {"ray", "hybrid"}) {
+        const Outcome r =
+            glint(dir, std::string("render --size 16384x16384 -o a.png --mode ") + mode,
+                  "ulimit -v 4194304 &&");
+        EXPECT_EQ(r.exit_code, 2) << mode << ": " << r.err;
+        EXPECT_NE(r.err.find("a 16384x16384 image needs about"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("of memory is available: render it smaller (--size)"),
+                  std::string::npos)
+            << r.err;
+        EXPECT_FALSE(fs::exists(dir / "a.png"));
+    }
+#endif
 }
 
 TEST(Cli, NoGlContextIsAClearErrorNamingRayMode) {

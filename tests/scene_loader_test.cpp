@@ -82,6 +82,7 @@ INSTANTIATE_TEST_SUITE_P(EveryClass, BadSceneTest, ::testing::Values(
     BadScene{"vector too short", R"({"camera": {"eye": [1, 2]}})", "/camera/eye: expected an array of 3 numbers, got an array of 2"},
     BadScene{"number beyond double", R"({"ambient": [0, 1e999, 0]})", "bad.json:1:17: number overflow parsing '1e999' (numbers must be finite"},
     BadScene{"negative colour", R"({"background": [0, -0.1, 0]})", "/background/1: colour components must not be negative"},
+    BadScene{"colour beyond float's comfort", R"({"lights": [{"position": [0, 9, 0], "color": [1e308, 1, 1]}]})", "/lights/0/color/0: colour components must be at most 1e6"},
     BadScene{"missing material", R"({"materials": {"red": {}}, "objects": [{"shape": "sphere", "material": "blue"}]})",
              "/objects/0/material: no material named 'blue' (known: default, red)"},
     BadScene{"zero scale", R"({"objects": [{"shape": "sphere", "transform": [{"scale": [1, 0, 1]}]}]})",
@@ -100,6 +101,8 @@ INSTANTIATE_TEST_SUITE_P(EveryClass, BadSceneTest, ::testing::Values(
     BadScene{"width out of range", R"({"camera": {"width": 0}})", "/camera/width: must be between 1 and 16384, got 0"},
     BadScene{"fractional height", R"({"camera": {"height": 10.5}})", "/camera/height: must be a whole number"},
     BadScene{"camera beyond float's comfort", R"({"camera": {"eye": [1e300, 0, 0]}})", "/camera/eye/0: coordinates must be within ±1e15"},
+    BadScene{"object placed beyond float's comfort", R"({"objects": [{"shape": "mesh", "vertices": [[1e15,0,0],[0,1,0],[0,0,1]], "indices": [0, 1, 2], "transform": [{"scale": 1e15}]}]})",
+             "/objects/0/transform: the placed object reaches 1e+30 from the origin; objects must lie within ±1e15"},
     BadScene{"light beyond float's comfort", R"({"lights": [{"position": [0, -2e15, 0]}]})", "/lights/0/position/1: coordinates must be within ±1e15"},
     BadScene{"eye on look_at", R"({"camera": {"eye": [1, 1, 1], "look_at": [1, 1, 1]}})", "/camera: eye and look_at must differ"},
     BadScene{"up along view", R"({"camera": {"eye": [0, 5, 0], "look_at": [0, 0, 0]}})", "/camera: up is parallel to the viewing direction"},
@@ -122,6 +125,23 @@ INSTANTIATE_TEST_SUITE_P(EveryClass, BadSceneTest, ::testing::Values(
     BadScene{"key with a slash is escaped in the path", R"({"materials": {"a/b": {"shine": 1}}})", "/materials/a~1b/shine: unknown key"}
 ), [](const auto& info) { return testing::test_name(info.param.what); });
 // clang-format on
+
+TEST(SceneLoader, BracketsInsideStringsDoNotCountAsNesting) {
+    const std::string brackets(1000, '[');
+    EXPECT_NO_THROW(parse_scene(R"({"description": ")" + brackets + R"(\"["})", "ok.json"));
+}
+
+TEST(SceneLoader, MoreLightsThanTheLimitAreRefused) {
+    std::string lights;
+    for (std::size_t i = 0; i <= kMaxLights; ++i)
+        lights += std::string(i ? "," : "") + R"({"position": [0, 9, 0]})";
+    try {
+        parse_scene(R"({"lights": [)" + lights + "]}", "many.json");
+        FAIL() << "accepted";
+    } catch (const SceneError& e) {
+        EXPECT_STREQ(e.what(), "many.json: /lights: has 4097 lights; the limit is 4096");
+    }
+}
 
 TEST(SceneLoader, MissingFileNamesTheFile) {
     try {

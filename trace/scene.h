@@ -6,6 +6,7 @@
 #include "trace/shapes/shape.h"
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace glint {
@@ -39,6 +40,12 @@ struct SceneObject {
     float top_radius = 0.0f; // cones only
     std::uint32_t mesh = 0;  // index into Scene::meshes for triangles and meshes
 };
+
+// Object-space bounds of an object's primitive; empty (default) for planes, which have none.
+Bounds unit_bounds(const SceneObject& object, const std::vector<Mesh>& meshes);
+
+// The box M·[lo, hi] in double: the eight corners mapped, their smallest and largest coordinates.
+std::pair<DVec3, DVec3> transformed_box(const Bounds& local, const DMat4& m);
 
 struct RenderSettings {
     int max_depth = 5;

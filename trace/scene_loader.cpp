@@ -62,6 +62,9 @@ class Loader {
         if (has(top, "ambient")) scene.ambient = colour(top.child("ambient"));
         if (has(top, "lights")) {
             const Node lights = array(top.child("lights"));
+            if (lights.value.size() > kMaxLights)
+                fail(lights, "has " + std::to_string(lights.value.size()) +
+                                 " lights; the limit is " + std::to_string(kMaxLights));
             for (std::size_t i = 0; i < lights.value.size(); ++i)
                 scene.lights.push_back(light(lights[i]));
         }
@@ -147,6 +150,8 @@ class Loader {
         for (int i = 0; i < 3; ++i)
             if (c[i] < 0)
                 fail(node[static_cast<std::size_t>(i)], "colour components must not be negative");
+            else if (c[i] > kMaxColour)
+                fail(node[static_cast<std::size_t>(i)], "colour components must be at most 1e6");
         return Vec3(c);
     }
 
@@ -357,6 +362,19 @@ class Loader {
             o.mesh = static_cast<std::uint32_t>(scene.meshes.size());
             scene.meshes.push_back(mesh(node, o.shape));
         }
+        if (o.shape != ShapeKind::plane) {
+            // Positions are bounded so that their squares stay finite in float; so must every
+            // point of a placed object (a mesh vertex of 1e15 scaled by 1e15 is not a position).
+            const auto [lo, hi] = transformed_box(unit_bounds(o, scene.meshes), o.transform);
+            const DVec3 far = glm::max(glm::abs(lo), glm::abs(hi));
+            const double reach = std::max({far.x, far.y, far.z});
+            if (reach > kMaxCoordinate) {
+                std::ostringstream message;
+                message << "the placed object reaches " << reach
+                        << " from the origin; objects must lie within ±1e15";
+                fail(has(node, "transform") ? node.child("transform") : node, message.str());
+            }
+        }
         scene.objects.push_back(o);
     }
 
@@ -386,9 +404,36 @@ std::string bare_message(const json::exception& e) {
     return what;
 }
 
+// Refuses nesting deeper than kMaxJsonDepth at the bracket that goes too deep, before parsing:
+// no valid scene nests that far, and a million brackets should cost a message, not a stack.
+void check_nesting(const std::string& text, const std::string& name) {
+    int depth = 0;
+    bool in_string = false, escaped = false;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (in_string) {
+            if (escaped)
+                escaped = false;
+            else if (c == '\\')
+                escaped = true;
+            else if (c == '"')
+                in_string = false;
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > kMaxJsonDepth)
+                throw SceneError(place(name, text, i) + ": JSON nested deeper than " +
+                                 std::to_string(kMaxJsonDepth) + " levels");
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+}
+
 } // namespace
 
 Scene parse_scene(const std::string& text, const std::string& name) {
+    check_nesting(text, name);
     json root;
     try {
         root = json::parse(text);
@@ -420,12 +465,20 @@ Scene load_scene(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw SceneError(name + ": cannot open scene file: " + std::strerror(errno));
     const auto size = std::filesystem::file_size(path, ec);
+    const std::string limit = "; the limit is " + std::to_string(kMaxSceneBytes >> 20) + " MiB";
     if (!ec && size > kMaxSceneBytes)
-        throw SceneError(name + ": scene file is " + std::to_string(size >> 20) +
-                         " MiB; the limit is " + std::to_string(kMaxSceneBytes >> 20) + " MiB");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return parse_scene(text.str(), name);
+        throw SceneError(name + ": scene file is " + std::to_string(size >> 20) + " MiB" + limit);
+    // Read no more than the limit allows: devices and pipes (/dev/zero) have no size to ask.
+    std::string text;
+    if (!ec) text.reserve(size);
+    char chunk[1 << 16];
+    while (in.read(chunk, sizeof chunk) || in.gcount() > 0) {
+        text.append(chunk, static_cast<std::size_t>(in.gcount()));
+        if (text.size() > kMaxSceneBytes)
+            throw SceneError(name + ": scene file is larger than allowed" + limit);
+    }
+    if (in.bad()) throw SceneError(name + ": cannot read scene file: " + std::strerror(errno));
+    return parse_scene(text, name);
 }
 
 } // namespace glint

@@ -22,6 +22,13 @@ inline constexpr int kMaxDepth = 64; // reflections per path
 inline constexpr std::uintmax_t kMaxSceneBytes = 64u << 20;
 inline constexpr std::size_t kMaxMeshVertices = 1u << 24;
 inline constexpr std::size_t kMaxMeshTriangles = 1u << 24;
+// Colours (light colours, ambient, material terms): products of three and sums over every light
+// stay far inside float's range, so shading never makes inf (nor inf·0 = NaN).
+inline constexpr double kMaxColour = 1e6;
+// Every light adds a shadow ray to every shaded point; a scene with more is a mistake.
+inline constexpr std::size_t kMaxLights = 4096;
+// The deepest scene is 6 levels (/objects/i/transform/j/matrix/row); nothing needs more.
+inline constexpr int kMaxJsonDepth = 32;
 
 Scene load_scene(const std::filesystem::path& path);
 
