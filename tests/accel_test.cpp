@@ -145,6 +145,21 @@ TEST_P(AccelTest, RendersAreByteIdenticalToTheListAtTheEdgeOfTheCoordinateRange)
     EXPECT_EQ(render(World(scene, GetParam())).image.rgb, list.image.rgb);
 }
 
+TEST_P(AccelTest, RendersAreByteIdenticalToTheListForAVeryElongatedScene) {
+    // Found by fuzz/scene_fuzzer.cpp (fuzz/seeds/scene/elongated-cylinder.json): a cylinder
+    // 3.5e14 long made the grid's cells-per-axis 1e10 before clamping, beyond int (undefined
+    // behaviour, caught by UBSan in the sanitize build). Cell counts are now clamped in float.
+    Scene scene = parse_scene(R"({"camera": {"eye": [0, 6, 7], "look_at": [0, 0.3, 0]},
+        "lights": [{"position": [-3, 5, 2]}], "objects": [
+        {"shape": "sphere", "transform": [{"scale": 0.6}, {"translate": [-1.2, 0.6, 0.6]}]},
+        {"shape": "cylinder", "transform": [{"scale": [0.351e15, 1.6, 0.35]}, {"translate": [1.2, 0, 0.4]}]},
+        {"shape": "box", "transform": [{"scale": [0.5, 0.25, 0.5]}, {"translate": [0, 0.25, -0.9]}]}]})",
+                              "elongated.json");
+    scene.camera.width = 48, scene.camera.height = 36;
+    EXPECT_EQ(render(World(scene, GetParam())).image.rgb,
+              render(World(scene, AccelKind::list)).image.rgb);
+}
+
 TEST_P(AccelTest, HandlesEmptySingleAndDegenerateSets) {
     Scene scene =
         parse_scene(R"({"camera": {"eye": [0, 0, 0], "look_at": [0, 0, -1]}})", "empty.json");
@@ -173,6 +188,30 @@ INSTANTIATE_TEST_SUITE_P(EveryStructure, AccelTest,
                          ::testing::Values(AccelKind::bvh, AccelKind::spheres, AccelKind::grid,
                                            AccelKind::kd),
                          [](const auto& info) { return std::string(accel_name(info.param)); });
+
+int depth_below(const Bvh& bvh, std::uint32_t node) {
+    const BvhNode& n = bvh.nodes()[node];
+    if (n.count > 0) return 1;
+    return 1 + std::max(depth_below(bvh, n.first), depth_below(bvh, n.first + 1));
+}
+
+TEST(Accel, BvhDepthStaysWithinTheTraversalStackWhereSahPeelsOneObjectALevel) {
+    // Boxes at 2^-5k along x, then along y, then along z, each 0.3 of its distance wide: every
+    // level's binned SAH finds one box alone in its top bin and splits it off: SAH alone built
+    // 73 levels from these 84 boxes. Tiny ranges also made bin indices NaN before bin_index.
+    std::vector<Bounds> boxes;
+    for (int axis = 0; axis < 3; ++axis)
+        for (int k = 0; k < 28; ++k) {
+            Vec3 centre(0.0f);
+            centre[axis] = std::exp2(-5.0f * static_cast<float>(k));
+            const float r = 0.3f * centre[axis];
+            boxes.push_back({centre - r, centre + r});
+        }
+    const Bvh bvh(boxes);
+    const int depth = depth_below(bvh, 0);
+    EXPECT_LE(depth, kMaxBvhDepth);
+    EXPECT_GT(depth, kSahDepth) << "no longer the adversarial case this test is about";
+}
 
 TEST(Accel, DefaultIsTheListForSmallScenesAndABvhBeyond) {
     const Scene small = random_scene(1, 5);

@@ -37,4 +37,13 @@ inline float max_component(Vec3 v) {
     return glm::max(v.x, glm::max(v.y, v.z));
 }
 
+// The bin of a position `bins` bins above the low end of a range cut into `count` bins, clamped
+// to [0, count − 1] in float before converting: over a range a few denormals wide, a rounding-
+// sized offset is beyond int, and NaN or infinity convert to nothing (the conversion is UB).
+inline int bin_index(float bins, int count) {
+    if (!(bins > 0)) return 0;
+    if (bins >= static_cast<float>(count - 1)) return count - 1;
+    return static_cast<int>(bins);
+}
+
 } // namespace glint

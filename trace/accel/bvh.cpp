@@ -24,8 +24,8 @@ struct Builder {
         node.count = end - begin;
     }
 
-    // Builds the subtree of items[begin, end) into nodes[index].
-    void build(std::uint32_t index, std::uint32_t begin, std::uint32_t end) {
+    // Builds the subtree of items[begin, end) into nodes[index], `depth` levels below the root.
+    void build(std::uint32_t index, std::uint32_t begin, std::uint32_t end, int depth) {
         BvhNode& node = nodes[index];
         Bounds box, centroid_box;
         for (std::uint32_t i = begin; i < end; ++i) {
@@ -37,6 +37,7 @@ struct Builder {
         // Up to 4 items a leaf whatever the SAH says: measured 1.15× more rays/s on a 10⁶-
         // triangle mesh than leaves of 2 (fewer nodes to fetch; bench/accel_bench.cpp, Mesh*).
         if (count <= 4) return leaf(node, begin, end);
+        if (depth >= kSahDepth) return median_split(index, begin, end, depth, centroid_box);
 
         // Binned SAH over the centroids (Wald 2007): cost of a split ∝ A_left·N_left +
         // A_right·N_right.
@@ -49,9 +50,8 @@ struct Builder {
             std::uint32_t bin_count[kBins] = {};
             const float scale = kBins / extent[axis];
             for (std::uint32_t i = begin; i < end; ++i) {
-                const int b = std::min(
-                    kBins - 1,
-                    static_cast<int>((centres[items[i]][axis] - centroid_box.lo[axis]) * scale));
+                const int b =
+                    bin_index((centres[items[i]][axis] - centroid_box.lo[axis]) * scale, kBins);
                 ++bin_count[b];
                 bin_box[b].extend(bounds[items[i]]);
             }
@@ -87,24 +87,41 @@ struct Builder {
             middle = static_cast<std::uint32_t>(
                 std::partition(items.begin() + begin, items.begin() + end,
                                [&](std::uint32_t item) {
-                                   return std::min(kBins - 1, static_cast<int>(
-                                                                  (centres[item][best_axis] - lo) *
-                                                                  scale)) <= best_split;
+                                   return bin_index((centres[item][best_axis] - lo) * scale,
+                                                    kBins) <= best_split;
                                }) -
                 items.begin());
         } else { // all centroids coincide: split the list in half
             middle = begin + count / 2;
         }
         if (middle == begin || middle == end) middle = begin + count / 2;
+        split(index, begin, middle, end, depth);
+    }
 
+    void split(std::uint32_t index, std::uint32_t begin, std::uint32_t middle, std::uint32_t end,
+               int depth) {
         const std::uint32_t children = next_node.fetch_add(2);
-        node.first = children;
-        node.count = 0;
-        if (count > kParallelBelow)
-            tbb::parallel_invoke([&] { build(children, begin, middle); },
-                                 [&] { build(children + 1, middle, end); });
+        nodes[index].first = children;
+        nodes[index].count = 0;
+        if (end - begin > kParallelBelow)
+            tbb::parallel_invoke([&] { build(children, begin, middle, depth + 1); },
+                                 [&] { build(children + 1, middle, end, depth + 1); });
         else
-            build(children, begin, middle), build(children + 1, middle, end);
+            build(children, begin, middle, depth + 1), build(children + 1, middle, end, depth + 1);
+    }
+
+    // Halves the items by count along the centroids' widest axis: depth grows by log2(n) at most.
+    void median_split(std::uint32_t index, std::uint32_t begin, std::uint32_t end, int depth,
+                      const Bounds& centroid_box) {
+        const Vec3 extent = centroid_box.hi - centroid_box.lo;
+        const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0
+                         : extent.y >= extent.z                       ? 1
+                                                                      : 2;
+        const std::uint32_t middle = begin + (end - begin) / 2;
+        std::nth_element(
+            items.begin() + begin, items.begin() + middle, items.begin() + end,
+            [&](std::uint32_t a, std::uint32_t b) { return centres[a][axis] < centres[b][axis]; });
+        split(index, begin, middle, end, depth);
     }
 };
 
@@ -118,7 +135,7 @@ Bvh::Bvh(std::span<const Bounds> item_bounds) {
     Builder builder{item_bounds, {}, items_, nodes_};
     builder.centres.reserve(item_bounds.size());
     for (const Bounds& b : item_bounds) builder.centres.push_back(b.centre());
-    builder.build(0, 0, static_cast<std::uint32_t>(item_bounds.size()));
+    builder.build(0, 0, static_cast<std::uint32_t>(item_bounds.size()), 0);
     nodes_.resize(builder.next_node.load());
 
     // The parallel build allocates nodes in whatever order its tasks ran; a traversal touches

@@ -17,6 +17,14 @@ struct BvhNode {
     std::uint32_t count; // leaf: number of items; inner: 0
 };
 
+// Deepest a tree may be: traversal stacks (here and in sphere_tree.h) hold one entry a level.
+// SAH alone does not bound depth (boxes at 2⁻⁵ᵏ along a line peel off one a level: 84 boxes
+// made 73 levels, tests/accel_test.cpp), so the build switches to object-median splits below
+// kSahDepth, which add at most log2(n) ≤ 32 levels.
+inline constexpr int kMaxBvhDepth = 128;
+inline constexpr int kSahDepth = 64;
+static_assert(kSahDepth + 32 + 1 <= kMaxBvhDepth);
+
 class Bvh {
   public:
     Bvh() = default;
@@ -33,8 +41,8 @@ class Bvh {
         const SlabRay slab(ray);
         struct Entry {
             std::uint32_t node;
-            float t;  // where the ray enters the node's box
-        } stack[128]; // SAH trees over float boxes stay far shallower
+            float t;           // where the ray enters the node's box
+        } stack[kMaxBvhDepth]; // one far child per level at most
         int top = 0;
         counters.node();
         float t_root = slab.entry(nodes_[0].bounds, t_max);

@@ -16,7 +16,7 @@ UniformGrid::UniformGrid(std::span<const Bounds> items) {
         std::max(extent.x, 1e-30f) * std::max(extent.y, 1e-30f) * std::max(extent.z, 1e-30f);
     const float cell = std::cbrt(volume / (3.0f * static_cast<float>(items.size())));
     for (int a = 0; a < 3; ++a) {
-        resolution_[a] = std::clamp(static_cast<int>(std::ceil(extent[a] / cell)), 1, 256);
+        resolution_[a] = 1 + bin_index(std::ceil(extent[a] / cell) - 1, 256);
         cell_size_[a] = extent[a] / static_cast<float>(resolution_[a]);
         inverse_cell_[a] = 1.0f / cell_size_[a];
     }
@@ -24,10 +24,8 @@ UniformGrid::UniformGrid(std::span<const Bounds> items) {
         static_cast<std::size_t>(resolution_.x) * resolution_.y * resolution_.z;
     const auto cell_range = [&](const Bounds& b, glm::ivec3& lo, glm::ivec3& hi) {
         for (int a = 0; a < 3; ++a) {
-            lo[a] = std::clamp(static_cast<int>((b.lo[a] - bounds_.lo[a]) * inverse_cell_[a]), 0,
-                               resolution_[a] - 1);
-            hi[a] = std::clamp(static_cast<int>((b.hi[a] - bounds_.lo[a]) * inverse_cell_[a]), 0,
-                               resolution_[a] - 1);
+            lo[a] = bin_index((b.lo[a] - bounds_.lo[a]) * inverse_cell_[a], resolution_[a]);
+            hi[a] = bin_index((b.hi[a] - bounds_.lo[a]) * inverse_cell_[a], resolution_[a]);
         }
     };
     // Two passes (count, then fill) into compressed rows.

@@ -32,8 +32,7 @@ class UniformGrid {
         glm::ivec3 cell, step;
         Vec3 t_next, t_delta;
         for (int a = 0; a < 3; ++a) {
-            cell[a] = std::clamp(static_cast<int>((p[a] - bounds_.lo[a]) * inverse_cell_[a]), 0,
-                                 resolution_[a] - 1);
+            cell[a] = bin_index((p[a] - bounds_.lo[a]) * inverse_cell_[a], resolution_[a]);
             if (ray.direction[a] > 0) {
                 step[a] = 1;
                 t_next[a] = (bounds_.lo[a] + (cell[a] + 1) * cell_size_[a] - ray.origin[a]) *

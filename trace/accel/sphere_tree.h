@@ -44,7 +44,7 @@ class SphereTree {
     void traverse(const Ray& ray, float& t_max, Counters& counters, Visit&& visit) const {
         const auto& nodes = topology_.nodes();
         if (nodes.empty()) return;
-        std::uint32_t stack[128];
+        std::uint32_t stack[kMaxBvhDepth]; // the BVH's topology, so its depth
         int top = 0;
         std::uint32_t node = 0;
         counters.node();
