@@ -6,6 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <random>
 
 namespace glint {
@@ -108,6 +111,28 @@ INSTANTIATE_TEST_SUITE_P(ConvexShapesAtEveryScale, NoAcneTest,
                                                                             : scale > 1 ? "_large"
                                                                                         : "_unit");
                          });
+
+TEST(Output, AFailedWriteLeavesTheOldFileAndNoTemporaryFile) {
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::path(::testing::TempDir()) / "glint_output_test";
+    fs::remove_all(dir);
+    fs::create_directories(dir / "taken");
+    write_file_atomically(dir / "a.txt", "old");
+    write_file_atomically(dir / "a.txt", "new"); // replaced whole
+    // Renaming over a directory fails after the temporary file was written.
+    EXPECT_THROW(write_file_atomically(dir / "taken", "bytes"), std::runtime_error);
+    EXPECT_TRUE(fs::is_directory(dir / "taken"));
+    EXPECT_THROW(write_file_atomically(dir / "missing" / "a.txt", "bytes"), std::runtime_error);
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(dir))
+        names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    EXPECT_EQ(names, (std::vector<std::string>{"a.txt", "taken"}));
+    std::ifstream in(dir / "a.txt");
+    std::string text;
+    in >> text;
+    EXPECT_EQ(text, "new");
+}
 
 TEST(Render, RayCountsAddUp) {
     const Scene scene = default_scene(40, 30);
