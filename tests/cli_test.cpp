@@ -164,7 +164,8 @@ TEST(Cli, AnUnwritablePlaceIsRefusedBeforeRendering) {
     for (const char* args : {"render --size 8x6 -o /proc/glint-test.png",
                              "render --size 8x6 -o a.png --stats /proc/glint-test.json",
                              "compare --size 8x6 -o /proc/glint-test",
-                             "compare --size 8x6 --json /proc/glint-test.json"}) {
+                             "compare --size 8x6 --json /proc/glint-test.json",
+                             "bench --benchmark_out=/proc/glint-test.json"}) {
         const Outcome r = glint(dir, args);
         EXPECT_EQ(r.exit_code, 2) << args;
         EXPECT_NE(r.err.find("cannot write in /proc"), std::string::npos) << r.err;
