@@ -142,11 +142,9 @@ namespace {
 std::optional<std::uint64_t> available_memory_bytes() {
     std::optional<std::uint64_t> available;
     std::ifstream meminfo("/proc/meminfo");
-    std::string key;
-    std::uint64_t kib = 0;
-    std::string unit;
-    while (meminfo >> key >> kib >> unit)
-        if (key == "MemAvailable:") available = kib * 1024;
+    unsigned long long kib = 0;
+    for (std::string line; std::getline(meminfo, line);)
+        if (std::sscanf(line.c_str(), "MemAvailable: %llu kB", &kib) == 1) available = kib * 1024;
     rlimit limit{};
     if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
         available = std::min<std::uint64_t>(available.value_or(UINT64_MAX), limit.rlim_cur);
