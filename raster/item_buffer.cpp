@@ -295,15 +295,19 @@ void ItemBuffer::upload(const World& world, RasterMode mode, int tessellation) {
 
 namespace {
 
-// Near plane: a millionth of the scene's extent. Reverse-Z float depth keeps its relative
-// precision at any distance, so only objects closer than that to the eye would be lost.
+// Near plane: 1e-24 of the scene's extent. Reverse-Z float depth (near / view depth) keeps its
+// relative precision at every distance, so the near plane costs nothing by being close: it only
+// has to keep the farthest depth, near / extent, a normal float (≥ 1.2e-38). Objects nearer than
+// it to the eye are clipped; at a millionth of the extent (the old choice) a sphere one unit from
+// the eye in a scene 1e6 across lost the rim of its silhouette, and exact resolve could not
+// recover pixels the id buffer never named it in (GlStability.ReverseZ…).
 float near_plane(const World& world) {
     float extent = 1.0f;
     for (const Object& o : world.objects())
         if (o.bounded)
             extent = std::max({extent, max_component(glm::abs(o.bounds.lo)),
                                max_component(glm::abs(o.bounds.hi))});
-    return extent * 1e-6f;
+    return extent * 1e-24f;
 }
 
 } // namespace

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "trace/scene_loader.h"
+#include "trace/transform.h"
 #include "trace/world.h"
 
 #include <cctype>
@@ -25,6 +26,17 @@ inline std::string test_name(std::string words) {
     for (char& c : words)
         if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
     return words;
+}
+
+// The same scene seen by the same camera after the world is mapped by p ↦ s·p + d.
+inline Scene moved(Scene scene, double s, DVec3 d) {
+    const DMat4 m = translation_matrix(d) * scale_matrix(DVec3(s));
+    const auto map = [&](DVec3 p) { return DVec3(m * glm::dvec4(p, 1.0)); };
+    scene.camera.eye = map(scene.camera.eye);
+    scene.camera.look_at = map(scene.camera.look_at);
+    for (PointLight& light : scene.lights) light.position = map(light.position);
+    for (SceneObject& o : scene.objects) o.transform = m * o.transform;
+    return scene;
 }
 
 inline Hit cast(const World& world, Vec3 origin, Vec3 direction) {
