@@ -79,7 +79,7 @@ template <bool kShadow> void SecondaryRays(benchmark::State& state) {
     const World& w = world(static_cast<int>(state.range(1)), kind_of(state));
     const PinholeCamera& camera = w.camera();
     std::vector<Ray> rays;
-    std::vector<float> limits;
+    std::vector<std::uint32_t> skips; // the object each ray leaves, if it may ignore it
     for (int y = 0; y < camera.height(); ++y) {
         for (int x = 0; x < camera.width(); ++x) {
             const Ray r = camera.ray(x, y);
@@ -89,15 +89,16 @@ template <bool kShadow> void SecondaryRays(benchmark::State& state) {
             const Vec3 from = s.spawn();
             rays.push_back(kShadow ? Ray{from, w.lights()[0].position - from}
                                    : Ray{from, reflect(r.direction, s.normal)});
+            skips.push_back(s.skip);
         }
     }
     std::int64_t count = 0;
     for (auto _ : state) {
-        for (const Ray& r : rays) {
+        for (std::size_t i = 0; i < rays.size(); ++i) {
             if constexpr (kShadow)
-                benchmark::DoNotOptimize(w.occluded(r, 1.0f));
+                benchmark::DoNotOptimize(w.occluded(rays[i], 1.0f, skips[i]));
             else
-                benchmark::DoNotOptimize(w.intersect(r));
+                benchmark::DoNotOptimize(w.intersect(rays[i], kInfinity, skips[i]));
         }
         count += static_cast<std::int64_t>(rays.size());
     }

@@ -20,7 +20,7 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, int depth, float 
         if (n_dot_l <= 0) continue; // the light is behind the surface
         ++counts.shadow;
         // Hard shadows: anything on the open segment from the point to the light (t in (0, 1)).
-        if (world.occluded({origin, light.position - origin}, 1.0f)) continue;
+        if (world.occluded({origin, light.position - origin}, 1.0f, surface.skip)) continue;
         const Vec3 r = 2.0f * n * n_dot_l - l; // reflect(−l, n)
         const float specular = std::pow(glm::max(0.0f, glm::dot(r, v)), m.shininess);
         colour += light.color * (m.diffuse * n_dot_l + m.specular * specular);
@@ -34,7 +34,7 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, int depth, float 
         reflected_weight >= settings.min_reflectivity) {
         ++counts.reflection;
         const Ray reflection{origin, reflect(ray.direction, n)};
-        const Hit next = world.intersect(reflection);
+        const Hit next = world.intersect(reflection, kInfinity, surface.skip);
         colour +=
             m.reflectivity * shade(world, reflection, next, depth + 1, reflected_weight, counts);
     }

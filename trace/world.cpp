@@ -84,10 +84,11 @@ ShapeHit World::intersect_object(const Object& object, const Ray& world_ray, flo
 // so every structure returns exactly the list's hit. Each object is therefore tested up to the
 // next float above the best t, and an equal t replaces the best only from a lower index.
 template <class Counters>
-Hit World::closest(const Ray& ray, float t_max, Counters& counters) const {
+Hit World::closest(const Ray& ray, float t_max, std::uint32_t skip, Counters& counters) const {
     Hit best;
     best.t = t_max;
     const auto consider = [&](std::uint32_t object) {
+        if (object == skip) return;
         const float limit = best.found() ? std::nextafter(best.t, kInfinity) : best.t;
         const ShapeHit h = intersect_object(objects_[object], ray, limit, counters);
         if (h.t < best.t || (h.t == best.t && best.found() && object < best.object))
@@ -121,10 +122,10 @@ bool World::any(const Ray& ray, float t_max, std::uint32_t skip, Counters& count
     return found;
 }
 
-Hit World::intersect(const Ray& ray, float t_max) const {
-    if (counting_) return closest(ray, t_max, counters_.local());
+Hit World::intersect(const Ray& ray, float t_max, std::uint32_t skip) const {
+    if (counting_) return closest(ray, t_max, skip, counters_.local());
     NoCounters none;
-    return closest(ray, t_max, none);
+    return closest(ray, t_max, skip, none);
 }
 
 bool World::occluded(const Ray& ray, float t_max, std::uint32_t skip) const {
@@ -168,7 +169,17 @@ SurfacePoint World::surface(const Ray& ray, const Hit& hit) const {
         break;
     }
     Vec3 normal = m.normal_to_world(s.normal);
-    if (glm::dot(normal, ray.direction) > 0) normal = -normal;
+    const bool from_inside = glm::dot(normal, ray.direction) > 0;
+    if (from_inside) normal = -normal;
+    // A convex solid lies behind the tangent plane at every surface point, and a planar shape in
+    // it: a ray leaving on the normal's side cannot meet the object again, so it skips the
+    // object instead of stepping off it. No offset is needed then, and none can be too large
+    // for a small neighbour (a millimetre sphere on a kilometre floor, where the offset below
+    // would be 2e-3).
+    const bool planar = object.shape == ShapeKind::plane || object.shape == ShapeKind::disk ||
+                        object.shape == ShapeKind::triangle;
+    if (planar || (object.shape != ShapeKind::mesh && !from_inside))
+        return {m.point_to_world(s.point), normal, 0.0f, hit.object};
     // Spawn offset (Wächter & Binder, Ray Tracing Gems ch. 6; pbrt-v4's OffsetRayOrigin): a new
     // ray from this point is intersected with this object after mapping back by M⁻¹, so it must
     // leave the object-space error box of the point: its extent along the object normal is
@@ -178,7 +189,7 @@ SurfacePoint World::surface(const Ray& ray, const Hit& hit) const {
     // for box faces) clear of its own rounding.
     const Vec3 error = m.roundtrip_error(s.point, s.error);
     const float offset = 2.0f * glm::dot(glm::abs(s.normal), error) / m.normal_stretch(s.normal);
-    return {m.point_to_world(s.point), normal, offset};
+    return {m.point_to_world(s.point), normal, offset, kNoObject};
 }
 
 } // namespace glint

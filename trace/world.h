@@ -33,7 +33,11 @@ struct Light {
 struct SurfacePoint {
     Vec3 position;
     Vec3 normal;  // unit geometric normal, flipped to face the incoming ray
-    float offset; // distance along `normal` that clears the surface's rounding error
+    float offset; // distance along `normal` that clears the surface's rounding error (0 if skip)
+    // The object itself when no ray leaving here on the normal's side can meet it again (a
+    // convex solid left from outside, or a planar shape): such rays ignore it and start on the
+    // surface, so they need no offset. kNoObject otherwise (meshes, solids left from inside).
+    std::uint32_t skip = kNoObject;
     Vec3 spawn() const { return position + offset * normal; }
 };
 
@@ -46,8 +50,8 @@ class World {
     // `accel`: the acceleration structure; by default list below kListBelow objects, else bvh.
     explicit World(const Scene& scene, std::optional<AccelKind> accel = std::nullopt);
 
-    // The closest hit in (0, t_max); ties go to the lower object index.
-    Hit intersect(const Ray& ray, float t_max = kInfinity) const;
+    // The closest hit in (0, t_max) on any object but `skip`; ties go to the lower index.
+    Hit intersect(const Ray& ray, float t_max = kInfinity, std::uint32_t skip = kNoObject) const;
     // Whether anything other than object `skip` is hit in (0, t_max).
     bool occluded(const Ray& ray, float t_max, std::uint32_t skip = kNoObject) const;
     // The first hit on one object alone, in (0, t_max).
@@ -77,7 +81,8 @@ class World {
     template <class Counters>
     ShapeHit intersect_object(const Object& object, const Ray& world_ray, float t_max,
                               Counters& counters) const;
-    template <class Counters> Hit closest(const Ray& ray, float t_max, Counters& counters) const;
+    template <class Counters>
+    Hit closest(const Ray& ray, float t_max, std::uint32_t skip, Counters& counters) const;
     template <class Counters>
     bool any(const Ray& ray, float t_max, std::uint32_t skip, Counters& counters) const;
 
