@@ -126,6 +126,9 @@ void create_output_directory(const fs::path& output) {
                          ": " + ec.message() + " (choose another place with -o)");
 }
 
+namespace {
+
+// Bytes one frame of width × height uses at its peak, roughly.
 std::uint64_t frame_memory_bytes(int width, int height, Mode mode) {
     // Per pixel, from what a frame holds: primary hits (12 B), the 8-bit image (3 B) and its PNG
     // encoding (~3 B); hybrid adds the read-back ids, depths and primitives (16 B) and the GL
@@ -135,8 +138,6 @@ std::uint64_t frame_memory_bytes(int width, int height, Mode mode) {
     const std::uint64_t per_pixel = mode == Mode::hybrid ? 64 : 24;
     return static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) * per_pixel;
 }
-
-namespace {
 
 // Bytes this process may still allocate: MemAvailable, or the address-space limit if lower.
 std::optional<std::uint64_t> available_memory_bytes() {

@@ -63,9 +63,6 @@ void create_output_directory(const std::filesystem::path& output);
 // `frames`: how many frames of this size are alive at once.
 void check_frame_memory(const Camera& camera, Mode mode, int frames);
 
-// Bytes one frame of `width` × `height` uses at its peak, roughly (measured; see options.cpp).
-std::uint64_t frame_memory_bytes(int width, int height, Mode mode);
-
 // Runs a command body, turning exceptions into glint's exit codes and one-line messages:
 // bad input 2, anything else 1.
 int guarded(const std::function<int()>& body);
