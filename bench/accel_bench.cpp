@@ -145,7 +145,8 @@ BENCHMARK(Frame)
 // A large triangle mesh: a fractal-ish terrain of 2·707² ≈ 10⁶ triangles, seen from above.
 
 struct Terrain {
-    Mesh mesh;
+    TriangleMesh given; // as a scene holds it
+    Mesh mesh;          // as the tracer holds it
     std::vector<Ray> rays;
 };
 
@@ -159,17 +160,17 @@ const Terrain& terrain() {
                 const float y = 1.5f * std::sin(0.7f * x) * std::cos(0.5f * z) +
                                 0.4f * std::sin(2.3f * x + 1.7f * z) +
                                 0.1f * std::sin(9.1f * x - 7.3f * z);
-                out.mesh.vertices.push_back({x, y, z});
-                out.mesh.bounds.extend(out.mesh.vertices.back());
+                out.given.vertices.push_back({x, y, z});
             }
         }
         for (std::uint32_t j = 0; j + 1 < n; ++j) {
             for (std::uint32_t i = 0; i + 1 < n; ++i) {
                 const std::uint32_t a = j * n + i;
-                out.mesh.triangles.push_back({a, a + n, a + 1});
-                out.mesh.triangles.push_back({a + 1, a + n, a + n + 1});
+                out.given.triangles.push_back({a, a + n, a + 1});
+                out.given.triangles.push_back({a + 1, a + n, a + n + 1});
             }
         }
+        out.mesh = prepare_mesh(out.given);
         std::mt19937 rng(7);
         std::uniform_real_distribution<float> u(-1, 1);
         for (int k = 0; k < 1 << 16;
@@ -187,7 +188,7 @@ const World& terrain_world() {
         scene.materials.push_back(Material{});
         scene.camera.eye = {0, 0, 0}; // rays are given in camera-relative coordinates already
         scene.camera.look_at = {0, 0, -1};
-        scene.meshes.push_back(terrain().mesh);
+        scene.meshes.push_back(terrain().given);
         scene.objects.push_back({ShapeKind::mesh, 0, DMat4(1.0), 0, 0});
         return World(scene);
     }();

@@ -21,11 +21,8 @@ Scene random_scene(unsigned seed, int count) {
         R"({"camera": {"eye": [0, 0, 12], "look_at": [0, 0, 0], "width": 8, "height": 8}})",
         "random.json");
     const int variant = static_cast<int>(seed % 4);
-    Mesh mesh;
-    for (int k = 0; k < 30; ++k) {
-        mesh.vertices.push_back(Vec3(u(rng), u(rng), u(rng)));
-        mesh.bounds.extend(mesh.vertices.back());
-    }
+    TriangleMesh mesh;
+    for (int k = 0; k < 30; ++k) mesh.vertices.push_back(glm::vec3(u(rng), u(rng), u(rng)));
     for (std::uint32_t k = 0; k + 2 < 30; k += 3) mesh.triangles.push_back({k, k + 1, k + 2});
     scene.meshes.push_back(mesh);
     if (seed % 5 == 0)

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <utility>
 
-namespace glint {
+namespace glint::inline GLINT_PRECISION {
 
 struct Bounds {
     Vec3 lo{kInfinity};
@@ -15,10 +15,10 @@ struct Bounds {
 
     void extend(Vec3 p) { lo = glm::min(lo, p), hi = glm::max(hi, p); }
     void extend(const Bounds& b) { lo = glm::min(lo, b.lo), hi = glm::max(hi, b.hi); }
-    Vec3 centre() const { return 0.5f * (lo + hi); }
-    float area() const { // surface area, for the SAH
-        const Vec3 d = glm::max(hi - lo, Vec3(0.0f));
-        return 2.0f * (d.x * d.y + d.y * d.z + d.z * d.x);
+    Vec3 centre() const { return 0.5_r * (lo + hi); }
+    Real area() const { // surface area, for the SAH
+        const Vec3 d = glm::max(hi - lo, Vec3(0.0_r));
+        return 2.0_r * (d.x * d.y + d.y * d.z + d.z * d.x);
     }
 };
 
@@ -32,30 +32,31 @@ struct SlabRay {
 
     explicit SlabRay(const Ray& ray) : origin(ray.origin) {
         for (int a = 0; a < 3; ++a) {
-            const float inv = 1.0f / ray.direction[a];
-            inverse_direction[a] = std::isinf(inv) ? std::copysign(1e30f, inv) : inv;
+            const Real inv = 1.0_r / ray.direction[a];
+            inverse_direction[a] = std::isinf(inv) ? std::copysign(1e30_r, inv) : inv;
         }
     }
 
     // The ray's segment inside b, clipped to [0, t_max]; false when it is empty. Conservative:
     // the far distance is enlarged by 2γ3 (pbrt-v4, Bounds3::IntersectP), so rounding in the
     // slab arithmetic never drops a box the ray touches.
-    bool clip(const Bounds& b, float t_max, float& t_near, float& t_far) const {
+    bool clip(const Bounds& b, Real t_max, Real& t_near, Real& t_far) const {
         const Vec3 t0 = (b.lo - origin) * inverse_direction;
         const Vec3 t1 = (b.hi - origin) * inverse_direction;
         const Vec3 near = glm::min(t0, t1), far = glm::max(t0, t1);
-        t_near = std::max(std::max(near.x, near.y), std::max(near.z, 0.0f));
-        t_far = std::min(std::min(std::min(far.x, far.y), far.z) * (1.0f + 2.0f * gamma(3)), t_max);
+        t_near = std::max(std::max(near.x, near.y), std::max(near.z, 0.0_r));
+        t_far =
+            std::min(std::min(std::min(far.x, far.y), far.z) * (1.0_r + 2.0_r * gamma(3)), t_max);
         return t_near <= t_far;
     }
 
     // Entry distance into b over [0, t_max], or infinity.
-    float entry(const Bounds& b, float t_max) const {
-        float t_near, t_far;
+    Real entry(const Bounds& b, Real t_max) const {
+        Real t_near, t_far;
         return clip(b, t_max, t_near, t_far) ? t_near : kInfinity;
     }
 
-    bool hits(const Bounds& b, float t_max) const { return entry(b, t_max) != kInfinity; }
+    bool hits(const Bounds& b, Real t_max) const { return entry(b, t_max) != kInfinity; }
 };
 
-} // namespace glint
+} // namespace glint::inline GLINT_PRECISION

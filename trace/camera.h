@@ -4,7 +4,7 @@
 #include "trace/ray.h"
 #include "trace/scene.h"
 
-namespace glint {
+namespace glint::inline GLINT_PRECISION {
 
 class PinholeCamera {
   public:
@@ -21,9 +21,9 @@ class PinholeCamera {
 
     // The ray through the centre of pixel (i, j), j = 0 the top row; origin at the eye.
     Ray ray(int i, int j) const {
-        const float x = 2.0f * (static_cast<float>(i) + 0.5f) / static_cast<float>(width_) - 1.0f;
-        const float y = 1.0f - 2.0f * (static_cast<float>(j) + 0.5f) / static_cast<float>(height_);
-        return {Vec3(0.0f), glm::normalize(forward_ + x * right_ + y * up_)};
+        const Real x = 2.0_r * (static_cast<Real>(i) + 0.5_r) / static_cast<Real>(width_) - 1.0_r;
+        const Real y = 1.0_r - 2.0_r * (static_cast<Real>(j) + 0.5_r) / static_cast<Real>(height_);
+        return {Vec3(0.0_r), glm::normalize(forward_ + x * right_ + y * up_)};
     }
 
     Vec3 forward() const { return forward_; }    // unit
@@ -37,4 +37,4 @@ class PinholeCamera {
     Vec3 forward_, right_, up_; // right_ and up_ pre-scaled by h·aspect and h
 };
 
-} // namespace glint
+} // namespace glint::inline GLINT_PRECISION

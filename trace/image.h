@@ -1,7 +1,9 @@
 // 8-bit RGB images and their PNG files.
 #pragma once
 
-#include "trace/math.h"
+#include <glm/glm.hpp>
+
+#include <cmath>
 
 #include <cstdint>
 #include <filesystem>

@@ -33,10 +33,10 @@ Image difference_heatmap(const Image& reference, const Image& test) {
         for (int c = 0; c < 3; ++c)
             e = std::max(e, std::abs(int(reference.rgb[i + c]) - int(test.rgb[i + c])));
         const float x = std::min(1.0f, static_cast<float>(e) / 32.0f);
-        const Vec3 colour = e == 0 ? Vec3(0.0f)
-                            : x < 0.5f
-                                ? glm::mix(Vec3(0.1f, 0.2f, 1.0f), Vec3(1.0f, 0.1f, 0.1f), x * 2)
-                                : glm::mix(Vec3(1.0f, 0.1f, 0.1f), Vec3(1.0f), (x - 0.5f) * 2);
+        const glm::vec3 colour =
+            e == 0     ? glm::vec3(0.0f)
+            : x < 0.5f ? glm::mix(glm::vec3(0.1f, 0.2f, 1.0f), glm::vec3(1.0f, 0.1f, 0.1f), x * 2)
+                       : glm::mix(glm::vec3(1.0f, 0.1f, 0.1f), glm::vec3(1.0f), (x - 0.5f) * 2);
         for (int c = 0; c < 3; ++c) out.rgb[i + c] = to_byte(colour[c]);
     }
     return out;
@@ -48,17 +48,18 @@ Image false_colour(const std::vector<std::uint32_t>& ids, int width, int height)
         if (ids[p] == 0) continue;
         // Golden-ratio hues: neighbouring ids get well separated colours.
         const float hue = std::fmod(static_cast<float>(ids[p]) * 0.618034f, 1.0f) * 6.0f;
-        const Vec3 rgb = glm::clamp(Vec3(std::abs(hue - 3.0f) - 1.0f, 2.0f - std::abs(hue - 2.0f),
-                                         2.0f - std::abs(hue - 4.0f)),
-                                    0.0f, 1.0f);
+        const glm::vec3 rgb =
+            glm::clamp(glm::vec3(std::abs(hue - 3.0f) - 1.0f, 2.0f - std::abs(hue - 2.0f),
+                                 2.0f - std::abs(hue - 4.0f)),
+                       0.0f, 1.0f);
         for (int c = 0; c < 3; ++c) out.rgb[3 * p + c] = to_byte(0.25f + 0.75f * rgb[c]);
     }
     return out;
 }
 
-double id_agreement(const std::vector<Hit>& a, const std::vector<Hit>& b) {
+double id_agreement(const std::vector<std::uint32_t>& a, const std::vector<std::uint32_t>& b) {
     std::size_t same = 0;
-    for (std::size_t i = 0; i < a.size(); ++i) same += a[i].object == b[i].object;
+    for (std::size_t i = 0; i < a.size(); ++i) same += a[i] == b[i];
     return a.empty() ? 1.0 : static_cast<double>(same) / static_cast<double>(a.size());
 }
 

@@ -2,7 +2,6 @@
 #pragma once
 
 #include "trace/image.h"
-#include "trace/ray.h"
 
 #include <vector>
 
@@ -24,7 +23,8 @@ Image difference_heatmap(const Image& reference, const Image& test);
 // A distinct colour per object id (black for background), for looking at an id buffer.
 Image false_colour(const std::vector<std::uint32_t>& ids, int width, int height);
 
-// Fraction of pixels whose primary hits name the same object (both missing counts as agreeing).
-double id_agreement(const std::vector<Hit>& a, const std::vector<Hit>& b);
+// Fraction of pixels whose primary hits name the same object (per pixel, row-major; both
+// missing counts as agreeing).
+double id_agreement(const std::vector<std::uint32_t>& a, const std::vector<std::uint32_t>& b);
 
 } // namespace glint

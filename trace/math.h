@@ -1,49 +1,73 @@
-// Vector types, rounding-error constants and the lecture's reflection formula.
+// The tracer's number type, vector types, rounding-error constants and the lecture's reflection
+// formula. The tracer is compiled twice (trace/CMakeLists.txt): in float (glint::f32, the
+// default) and in double (glint::f64, the reference), from the same sources; GLINT_DOUBLE picks
+// which, and each lives in its own inline namespace so that one program can hold both.
+// The tracer's comments say "float" for Real: the default, and the precision whose limits matter.
 #pragma once
+
+#include "trace/scene.h"
 
 #include <glm/glm.hpp>
 
 #include <cstdint>
 #include <limits>
 
-namespace glint {
+#ifndef GLINT_DOUBLE
+#define GLINT_DOUBLE 0
+#endif
+#if GLINT_DOUBLE
+#define GLINT_PRECISION f64
+#else
+#define GLINT_PRECISION f32
+#endif
 
-using Vec3 = glm::vec3;
-using DVec3 = glm::dvec3;
-using Mat3 = glm::mat3;
-using DMat4 = glm::dmat4;
+namespace glint::inline GLINT_PRECISION {
 
-inline constexpr float kInfinity = std::numeric_limits<float>::infinity();
+#if GLINT_DOUBLE
+using Real = double;
+#else
+using Real = float;
+#endif
 
-// Largest coordinate or transform entry a scene may use: squares of differences must still be
-// finite in float (3.4e38) with room to spare.
-inline constexpr double kMaxCoordinate = 1e15;
+using Vec3 = glm::vec<3, Real>;
+using Mat3 = glm::mat<3, 3, Real>;
 
-// Unit roundoff of float (2^-24): one rounded operation has relative error at most this.
-inline constexpr float kUnitRoundoff = 0.5f * std::numeric_limits<float>::epsilon();
+// A literal in the tracer's precision: 0.5_r is a float in glint::f32 and a double in glint::f64.
+constexpr Real operator""_r(long double value) {
+    return static_cast<Real>(value);
+}
+constexpr Real operator""_r(unsigned long long value) {
+    return static_cast<Real>(value);
+}
 
-// gamma(n) bounds the relative error of n consecutive rounded float operations
+inline constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
+
+// Unit roundoff (2^-24 in float, 2^-53 in double): one rounded operation has relative error at
+// most this.
+inline constexpr Real kUnitRoundoff = 0.5_r * std::numeric_limits<Real>::epsilon();
+
+// gamma(n) bounds the relative error of n consecutive rounded operations
 // (Higham, "Accuracy and Stability of Numerical Algorithms", §3.1; pbrt-v4 util/float.h).
-constexpr float gamma(int n) {
-    return (static_cast<float>(n) * kUnitRoundoff) / (1 - static_cast<float>(n) * kUnitRoundoff);
+constexpr Real gamma(int n) {
+    return (static_cast<Real>(n) * kUnitRoundoff) / (1 - static_cast<Real>(n) * kUnitRoundoff);
 }
 
 // Perfect reflection of direction d about unit normal n: d' = d - 2n(n·d) (Ray Tracing III).
 inline Vec3 reflect(Vec3 d, Vec3 n) {
-    return d - 2.0f * n * glm::dot(n, d);
+    return d - 2.0_r * n * glm::dot(n, d);
 }
 
-inline float max_component(Vec3 v) {
+inline Real max_component(Vec3 v) {
     return glm::max(v.x, glm::max(v.y, v.z));
 }
 
 // The bin of a position `bins` bins above the low end of a range cut into `count` bins, clamped
-// to [0, count − 1] in float before converting: over a range a few denormals wide, a rounding-
-// sized offset is beyond int, and NaN or infinity convert to nothing (the conversion is UB).
-inline int bin_index(float bins, int count) {
+// to [0, count − 1] before converting: over a range a few denormals wide, a rounding-sized
+// offset is beyond int, and NaN or infinity convert to nothing (the conversion is UB).
+inline int bin_index(Real bins, int count) {
     if (!(bins > 0)) return 0;
-    if (bins >= static_cast<float>(count - 1)) return count - 1;
+    if (bins >= static_cast<Real>(count - 1)) return count - 1;
     return static_cast<int>(bins);
 }
 
-} // namespace glint
+} // namespace glint::inline GLINT_PRECISION

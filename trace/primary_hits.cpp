@@ -2,7 +2,7 @@
 
 #include <mutex>
 
-namespace glint {
+namespace glint::inline GLINT_PRECISION {
 
 std::vector<Hit> primary_hits_by_ray(const World& world, const TileProgress& progress) {
     const PinholeCamera& camera = world.camera();
@@ -31,7 +31,7 @@ std::vector<Hit> primary_hits_by_ray(const World& world, const TileProgress& pro
 // tracer may disagree on whether the edge's object covers it, and the id image may then name
 // the object behind. Such pixels lie where ids change, so exact mode traces every pixel whose
 // 8 neighbours do not all carry its id.
-constexpr float kDepthSlack = 1e-3f;
+constexpr Real kDepthSlack = 1e-3_r;
 
 namespace {
 
@@ -77,9 +77,9 @@ std::vector<Hit> primary_hits_from_ids(const World& world, const IdImage& ids, R
                     continue;
                 }
                 if (resolve == Resolve::exact) {
-                    const float t_raster =
+                    const Real t_raster =
                         ids.view_depth[p] / glm::dot(ray.direction, camera.forward());
-                    const float t_start = glm::max(0.0f, t_raster * (1 - kDepthSlack));
+                    const Real t_start = glm::max(0.0_r, t_raster * (1 - kDepthSlack));
                     if (t_start < hit.t &&
                         world.occluded({ray.origin + t_start * ray.direction, ray.direction},
                                        hit.t - t_start, object)) {
@@ -100,4 +100,4 @@ std::vector<Hit> primary_hits_from_ids(const World& world, const IdImage& ids, R
     return hits;
 }
 
-} // namespace glint
+} // namespace glint::inline GLINT_PRECISION

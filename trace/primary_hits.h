@@ -9,7 +9,7 @@
 
 #include <vector>
 
-namespace glint {
+namespace glint::inline GLINT_PRECISION {
 
 // Per pixel, row-major, top row first.
 struct IdImage {
@@ -36,4 +36,4 @@ std::vector<Hit> primary_hits_by_ray(const World& world, const TileProgress& pro
 std::vector<Hit> primary_hits_from_ids(const World& world, const IdImage& ids, Resolve resolve,
                                        PrimaryStats& stats, const TileProgress& progress = {});
 
-} // namespace glint
+} // namespace glint::inline GLINT_PRECISION

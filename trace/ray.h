@@ -3,7 +3,7 @@
 
 #include "trace/math.h"
 
-namespace glint {
+namespace glint::inline GLINT_PRECISION {
 
 // origin + t·direction. The direction is not required to be unit length: object-space rays
 // keep M⁻¹·d unnormalised so that t means the same point in world and object space.
@@ -17,11 +17,11 @@ inline constexpr std::uint32_t kNoObject = std::numeric_limits<std::uint32_t>::m
 // The closest hit found so far. `primitive` is the triangle index within a mesh, or the part of
 // an analytic shape (box face, cylinder cap) so that the surface can be rebuilt without guessing.
 struct Hit {
-    float t = kInfinity;
+    Real t = kInfinity;
     std::uint32_t object = kNoObject;
     std::uint32_t primitive = 0;
 
     bool found() const { return object != kNoObject; }
 };
 
-} // namespace glint
+} // namespace glint::inline GLINT_PRECISION

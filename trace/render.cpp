@@ -1,25 +1,31 @@
 #include "trace/render.h"
 
+#include "trace/image_metrics.h"
+
+#include <chrono>
 #include <mutex>
 
-namespace glint {
+namespace glint::inline GLINT_PRECISION {
 
 RenderResult shade_image(const World& world, const std::vector<Hit>& primary,
                          const TileProgress& progress) {
     const PinholeCamera& camera = world.camera();
     const int width = camera.width();
-    RenderResult result{Image(width, camera.height()), {}};
+    RenderResult result{Image(width, camera.height()), {}, {}};
+    result.omitted_weight.assign(primary.size(), 0.0f);
     std::mutex counts_mutex;
     for_each_tile(width, camera.height(), progress, [&](int x0, int y0, int x1, int y1) {
         RayCounts counts;
         for (int y = y0; y < y1; ++y) {
             for (int x = x0; x < x1; ++x) {
                 ++counts.primary;
-                const Vec3 c =
-                    shade(world, camera.ray(x, y), primary[static_cast<std::size_t>(y) * width + x],
-                          0, 1.0f, counts);
+                const std::size_t i = static_cast<std::size_t>(y) * width + x;
+                Real omitted = 0;
+                const Vec3 c = shade(world, camera.ray(x, y), primary[i], 0, 1, counts, omitted);
+                result.omitted_weight[i] = static_cast<float>(omitted);
                 std::uint8_t* p = result.image.pixel(x, y);
-                p[0] = to_byte(c.x), p[1] = to_byte(c.y), p[2] = to_byte(c.z);
+                p[0] = to_byte(static_cast<float>(c.x)), p[1] = to_byte(static_cast<float>(c.y)),
+                p[2] = to_byte(static_cast<float>(c.z));
             }
         }
         const std::lock_guard lock(counts_mutex); // integer sums: order does not matter
@@ -32,4 +38,31 @@ RenderResult render(const World& world, const TileProgress& progress) {
     return shade_image(world, primary_hits_by_ray(world, progress), progress);
 }
 
-} // namespace glint
+std::vector<std::uint32_t> object_ids(const std::vector<Hit>& primary) {
+    std::vector<std::uint32_t> ids(primary.size());
+    for (std::size_t i = 0; i < primary.size(); ++i)
+        ids[i] = primary[i].found() ? primary[i].object + 1 : 0;
+    return ids;
+}
+
+RayFrame render_ray_frame(const Scene& scene, std::optional<AccelKind> accel,
+                          const TileProgress& progress) {
+    using Clock = std::chrono::steady_clock;
+    const auto since = [](Clock::time_point start) {
+        return std::chrono::duration<double>(Clock::now() - start).count();
+    };
+    RayFrame frame;
+    auto start = Clock::now();
+    const World world(scene, accel);
+    frame.prepare_seconds = since(start);
+    start = Clock::now();
+    const std::vector<Hit> primary = primary_hits_by_ray(world, progress);
+    frame.primary_seconds = since(start);
+    start = Clock::now();
+    frame.result = shade_image(world, primary, progress);
+    frame.shading_seconds = since(start);
+    frame.ids = object_ids(primary);
+    return frame;
+}
+
+} // namespace glint::inline GLINT_PRECISION

@@ -2,16 +2,12 @@
 // buffer, trace/primary_hits.h), in parallel tiles; byte-identical for any thread count.
 #pragma once
 
-#include "trace/image.h"
+#include "trace/image_metrics.h"
+#include "trace/precision.h"
 #include "trace/primary_hits.h"
 #include "trace/shading.h"
 
-namespace glint {
-
-struct RenderResult {
-    Image image;
-    RayCounts rays;
-};
+namespace glint::inline GLINT_PRECISION {
 
 // Shades the pixels whose primary hits are given (row-major, top row first).
 RenderResult shade_image(const World& world, const std::vector<Hit>& primary,
@@ -20,4 +16,12 @@ RenderResult shade_image(const World& world, const std::vector<Hit>& primary,
 // Ray mode in one call: primary hits by ray casting, then shading.
 RenderResult render(const World& world, const TileProgress& progress = {});
 
-} // namespace glint
+// Object index + 1 per pixel, 0 where the primary ray hit nothing.
+std::vector<std::uint32_t> object_ids(const std::vector<Hit>& primary);
+
+// Fraction of pixels whose primary hits name the same object (both missing counts as agreeing).
+inline double id_agreement(const std::vector<Hit>& a, const std::vector<Hit>& b) {
+    return glint::id_agreement(object_ids(a), object_ids(b));
+}
+
+} // namespace glint::inline GLINT_PRECISION

@@ -1,15 +1,36 @@
-// The scene as loaded and validated (DESIGN.md §7): everything after loading may assume it valid.
+// The scene as loaded and validated (DESIGN.md §7): what the file says, in double positions and
+// transforms and float colours, the same for both precisions of the tracer (trace/math.h).
+// Everything after loading may assume it valid; World (trace/world.h) prepares it for tracing.
 #pragma once
 
-#include "trace/math.h"
-#include "trace/shapes/mesh.h"
-#include "trace/shapes/shape.h"
+#include <glm/glm.hpp>
 
+#include <array>
+#include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
 namespace glint {
+
+using DVec3 = glm::dvec3;
+using DMat4 = glm::dmat4;
+
+// Largest coordinate or transform entry a scene may use: squares of differences must still be
+// finite in float (3.4e38) with room to spare.
+inline constexpr double kMaxCoordinate = 1e15;
+
+// The closed set of shapes (DESIGN.md §3). One switch in World dispatches on it.
+enum class ShapeKind : std::uint8_t { sphere, plane, box, disk, cylinder, cone, triangle, mesh };
+
+inline constexpr std::array<std::string_view, 8> kShapeNames = {
+    "sphere", "plane", "box", "disk", "cylinder", "cone", "triangle", "mesh"};
+
+inline std::string_view shape_name(ShapeKind kind) {
+    return kShapeNames[static_cast<int>(kind)];
+}
 
 struct Camera {
     DVec3 eye{0.0, 0.0, 5.0};
@@ -22,15 +43,21 @@ struct Camera {
 
 struct PointLight {
     DVec3 position;
-    Vec3 color{1.0f};
+    glm::vec3 color{1.0f};
 };
 
 struct Material {
-    Vec3 ambient{0.8f};
-    Vec3 diffuse{0.8f};
-    Vec3 specular{0.0f};
+    glm::vec3 ambient{0.8f};
+    glm::vec3 diffuse{0.8f};
+    glm::vec3 specular{0.0f};
     float shininess = 32.0f;
     float reflectivity = 0.0f;
+};
+
+// Triangles as given (counter-clockwise front), object space.
+struct TriangleMesh {
+    std::vector<glm::vec3> vertices;
+    std::vector<glm::uvec3> triangles; // indices into vertices
 };
 
 struct SceneObject {
@@ -41,12 +68,6 @@ struct SceneObject {
     std::uint32_t mesh = 0;  // index into Scene::meshes for triangles and meshes
 };
 
-// Object-space bounds of an object's primitive; empty (default) for planes, which have none.
-Bounds unit_bounds(const SceneObject& object, const std::vector<Mesh>& meshes);
-
-// The box M·[lo, hi] in double: the eight corners mapped, their smallest and largest coordinates.
-std::pair<DVec3, DVec3> transformed_box(const Bounds& local, const DMat4& m);
-
 struct RenderSettings {
     int max_depth = 5;
     float min_reflectivity = 0.01f;
@@ -54,14 +75,37 @@ struct RenderSettings {
 
 struct Scene {
     Camera camera;
-    Vec3 background{0.0f};
-    Vec3 ambient{0.0f};
+    glm::vec3 background{0.0f};
+    glm::vec3 ambient{0.0f};
     std::vector<PointLight> lights;
     std::vector<Material> materials; // index 0 is the default material
     std::vector<std::string> material_names;
     std::vector<SceneObject> objects;
-    std::vector<Mesh> meshes;
+    std::vector<TriangleMesh> meshes;
     RenderSettings render;
 };
+
+// Building blocks of a scene's transform list (column vectors: p' = M·p).
+DMat4 translation_matrix(DVec3 offset);
+DMat4 scale_matrix(DVec3 factors);
+DMat4 rotation_matrix(DVec3 axis, double degrees); // right-handed about the normalised axis
+
+// Largest condition number (after scaling the rows of M⁻¹'s linear part to unit length) that
+// glint accepts. Row scaling makes any rotated non-uniform scale perfectly conditioned, since
+// float rounds each row of M⁻¹ relative to its own size; what remains measures how nearly
+// parallel the rows are (shear). At 1e4, float's 7 digits leave about 3 in object coordinates.
+// The double-precision tracer accepts exactly the same scenes, so that it can be their reference.
+inline constexpr double kMaxConditionNumber = 1e4;
+
+// Why M cannot place an object (singular, non-affine, out of float's range or too ill-conditioned
+// to invert in float), or nothing when it can.
+std::optional<std::string> why_unusable(const DMat4& m);
+
+// Object-space box [lo, hi] of an object's primitive; nothing for planes, which have none.
+std::optional<std::pair<DVec3, DVec3>> unit_box(const SceneObject& object,
+                                                const std::vector<TriangleMesh>& meshes);
+
+// The box M·[lo, hi] in double: the eight corners mapped, their smallest and largest coordinates.
+std::pair<DVec3, DVec3> transformed_box(const std::pair<DVec3, DVec3>& local, const DMat4& m);
 
 } // namespace glint

@@ -1,7 +1,5 @@
 #include "trace/scene_loader.h"
 
-#include "trace/transform.h"
-
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -145,14 +143,14 @@ class Loader {
         return p;
     }
 
-    Vec3 colour(const Node& node) const {
+    glm::vec3 colour(const Node& node) const {
         const DVec3 c = vec3(node);
         for (int i = 0; i < 3; ++i)
             if (c[i] < 0)
                 fail(node[static_cast<std::size_t>(i)], "colour components must not be negative");
             else if (c[i] > kMaxColour)
                 fail(node[static_cast<std::size_t>(i)], "colour components must be at most 1e6");
-        return Vec3(c);
+        return glm::vec3(c);
     }
 
     Camera camera(const Node& node) const {
@@ -271,22 +269,21 @@ class Loader {
         return m;
     }
 
-    Mesh mesh(const Node& node, ShapeKind shape) const {
+    TriangleMesh mesh(const Node& node, ShapeKind shape) const {
         if (!has(node, "vertices")) fail(node, std::string(shape_name(shape)) + " needs vertices");
         const Node vertices = array(node.child("vertices"));
-        Mesh mesh;
+        TriangleMesh mesh;
         if (vertices.value.size() > kMaxMeshVertices)
             fail(vertices, "has " + std::to_string(vertices.value.size()) +
                                " vertices; the limit is " + std::to_string(kMaxMeshVertices));
         for (std::size_t i = 0; i < vertices.value.size(); ++i) {
             const DVec3 v = point(vertices[i]);
-            mesh.vertices.push_back(Vec3(v));
-            mesh.bounds.extend(mesh.vertices.back());
+            mesh.vertices.push_back(glm::vec3(v));
         }
         if (shape == ShapeKind::triangle) {
             if (mesh.vertices.size() != 3) fail(vertices, "a triangle has exactly 3 vertices");
-            const Vec3 normal = glm::cross(mesh.vertices[1] - mesh.vertices[0],
-                                           mesh.vertices[2] - mesh.vertices[0]);
+            const glm::vec3 normal = glm::cross(mesh.vertices[1] - mesh.vertices[0],
+                                                mesh.vertices[2] - mesh.vertices[0]);
             if (glm::length(normal) == 0) fail(vertices, "the triangle's vertices are collinear");
             mesh.triangles.push_back({0, 1, 2});
             return mesh;
@@ -365,7 +362,7 @@ class Loader {
         if (o.shape != ShapeKind::plane) {
             // Positions are bounded so that their squares stay finite in float; so must every
             // point of a placed object (a mesh vertex of 1e15 scaled by 1e15 is not a position).
-            const auto [lo, hi] = transformed_box(unit_bounds(o, scene.meshes), o.transform);
+            const auto [lo, hi] = transformed_box(*unit_box(o, scene.meshes), o.transform);
             const DVec3 far = glm::max(glm::abs(lo), glm::abs(hi));
             const double reach = std::max({far.x, far.y, far.z});
             if (reach > kMaxCoordinate) {

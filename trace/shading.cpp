@@ -2,13 +2,13 @@
 
 #include <cmath>
 
-namespace glint {
+namespace glint::inline GLINT_PRECISION {
 
-Vec3 shade(const World& world, const Ray& ray, const Hit& hit, int depth, float weight,
-           RayCounts& counts) {
+Vec3 shade(const World& world, const Ray& ray, const Hit& hit, int depth, Real weight,
+           RayCounts& counts, Real& omitted_weight) {
     if (!hit.found()) return world.background();
     const SurfacePoint surface = world.surface(ray, hit);
-    const Material& m = world.material(hit.object);
+    const Phong& m = world.material(hit.object);
     const Vec3 n = surface.normal;
     const Vec3 v = -glm::normalize(ray.direction);
     const Vec3 origin = surface.spawn();
@@ -16,29 +16,31 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, int depth, float 
     Vec3 colour = m.ambient * world.ambient();
     for (const Light& light : world.lights()) {
         const Vec3 l = glm::normalize(light.position - surface.position);
-        const float n_dot_l = glm::dot(n, l);
+        const Real n_dot_l = glm::dot(n, l);
         if (n_dot_l <= 0) continue; // the light is behind the surface
         ++counts.shadow;
         // Hard shadows: anything on the open segment from the point to the light (t in (0, 1)).
-        if (world.occluded({origin, light.position - origin}, 1.0f, surface.skip)) continue;
-        const Vec3 r = 2.0f * n * n_dot_l - l; // reflect(−l, n)
-        const float specular = std::pow(glm::max(0.0f, glm::dot(r, v)), m.shininess);
+        if (world.occluded({origin, light.position - origin}, 1.0_r, surface.skip)) continue;
+        const Vec3 r = 2.0_r * n * n_dot_l - l; // reflect(−l, n)
+        const Real specular = std::pow(glm::max(0.0_r, glm::dot(r, v)), m.shininess);
         colour += light.color * (m.diffuse * n_dot_l + m.specular * specular);
     }
 
     // Perfect reflection, cast only while it can still matter: below max_depth, and while the
     // path weight (this surface's reflectivity included) stays at or above min_reflectivity.
     const RenderSettings& settings = world.settings();
-    const float reflected_weight = weight * m.reflectivity;
-    if (m.reflectivity > 0 && depth < settings.max_depth &&
-        reflected_weight >= settings.min_reflectivity) {
+    const Real reflected_weight = weight * m.reflectivity;
+    if (m.reflectivity <= 0) return colour;
+    if (depth < settings.max_depth && reflected_weight >= settings.min_reflectivity) {
         ++counts.reflection;
         const Ray reflection{origin, reflect(ray.direction, n)};
         const Hit next = world.intersect(reflection, kInfinity, surface.skip);
-        colour +=
-            m.reflectivity * shade(world, reflection, next, depth + 1, reflected_weight, counts);
+        colour += m.reflectivity * shade(world, reflection, next, depth + 1, reflected_weight,
+                                         counts, omitted_weight);
+    } else {
+        omitted_weight = reflected_weight;
     }
     return colour;
 }
 
-} // namespace glint
+} // namespace glint::inline GLINT_PRECISION

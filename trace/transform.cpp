@@ -5,71 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
-namespace glint {
-
-DMat4 translation_matrix(DVec3 offset) {
-    return glm::translate(DMat4(1.0), offset);
-}
-
-DMat4 scale_matrix(DVec3 factors) {
-    return glm::scale(DMat4(1.0), factors);
-}
-
-DMat4 rotation_matrix(DVec3 axis, double degrees) {
-    return glm::rotate(DMat4(1.0), glm::radians(degrees), glm::normalize(axis));
-}
-
-namespace {
-
-// Frobenius norm of a 3×3 matrix.
-double frobenius(const glm::dmat3& a) {
-    double sum = 0;
-    for (int c = 0; c < 3; ++c)
-        for (int r = 0; r < 3; ++r) sum += a[c][r] * a[c][r];
-    return std::sqrt(sum);
-}
-
-std::string format_double(double value) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.3g", value);
-    return text;
-}
-
-} // namespace
-
-std::optional<std::string> why_unusable(const DMat4& m) {
-    for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 4; ++r)
-            if (!std::isfinite(m[c][r])) return "transform has a non-finite entry";
-    // glm is column-major: m[column][row]. The last row must be [0 0 0 1] for an affine map.
-    if (m[0][3] != 0 || m[1][3] != 0 || m[2][3] != 0 || m[3][3] != 1)
-        return "transform is not affine (last row must be [0, 0, 0, 1])";
-    for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 3; ++r)
-            if (std::abs(m[c][r]) > kMaxCoordinate)
-                return "transform entry " + format_double(m[c][r]) + " is beyond " +
-                       format_double(kMaxCoordinate) + ", too large for float";
-    const glm::dmat3 linear(m);
-    const double det = glm::determinant(linear);
-    if (det == 0 || !std::isfinite(det)) return "transform is singular (determinant 0)";
-    glm::dmat3 inverse = glm::inverse(linear);
-    // Row-equilibrate M⁻¹ (rows are glm's inverse[·][r]) and measure what conditioning is left.
-    for (int r = 0; r < 3; ++r) {
-        const double norm =
-            std::sqrt(inverse[0][r] * inverse[0][r] + inverse[1][r] * inverse[1][r] +
-                      inverse[2][r] * inverse[2][r]);
-        if (norm < 1 / kMaxCoordinate || norm > kMaxCoordinate)
-            return "transform scales by " + format_double(1 / norm) +
-                   ", outside what float can invert (1e-15 to 1e15)";
-        for (int c = 0; c < 3; ++c) inverse[c][r] /= norm;
-    }
-    // Frobenius condition number; 3 for a perfectly conditioned matrix, so scale it to 1.
-    const double condition = frobenius(inverse) * frobenius(glm::inverse(inverse)) / 3.0;
-    if (!(condition <= kMaxConditionNumber))
-        return "transform is too close to singular to invert in float (condition number " +
-               format_double(condition) + ", limit " + format_double(kMaxConditionNumber) + ")";
-    return std::nullopt;
-}
+namespace glint::inline GLINT_PRECISION {
 
 Transform make_transform(const DMat4& m) {
     Transform t;
@@ -83,16 +19,16 @@ Transform make_transform(const DMat4& m) {
     const bool diagonal = a[0][1] == 0 && a[0][2] == 0 && a[1][0] == 0 && a[1][2] == 0 &&
                           a[2][0] == 0 && a[2][1] == 0;
     const bool uniform = diagonal && a[0][0] == a[1][1] && a[1][1] == a[2][2] && a[0][0] > 0;
-    const bool no_offset = t.offset == Vec3(0.0f);
-    if (uniform && a[0][0] == 1.0f) {
+    const bool no_offset = t.offset == Vec3(0.0_r);
+    if (uniform && a[0][0] == 1.0_r) {
         t.kind = no_offset ? TransformClass::identity : TransformClass::translation;
         // The fast paths use -offset for the inverse: make the general fields agree exactly.
-        t.inverse_linear = Mat3(1.0f);
+        t.inverse_linear = Mat3(1.0_r);
         t.inverse_offset = -t.offset;
     } else if (uniform) {
         t.kind = TransformClass::uniform_scale;
         t.scale = a[0][0];
-        t.inverse_scale = 1.0f / t.scale;
+        t.inverse_scale = 1.0_r / t.scale;
     } else {
         t.kind = TransformClass::general;
     }
@@ -108,8 +44,8 @@ Transform make_transform(const DMat4& m) {
         offset_error = std::max(offset_error, std::abs(offset_product[c]));
     }
     // Round up so the float bound is not smaller than the double one.
-    t.roundtrip_linear_error = static_cast<float>(linear_error) * (1 + 2 * kUnitRoundoff);
-    t.roundtrip_offset_error = static_cast<float>(offset_error) * (1 + 2 * kUnitRoundoff);
+    t.roundtrip_linear_error = static_cast<Real>(linear_error) * (1 + 2 * kUnitRoundoff);
+    t.roundtrip_offset_error = static_cast<Real>(offset_error) * (1 + 2 * kUnitRoundoff);
     return t;
 }
 
@@ -147,11 +83,11 @@ Vec3 Transform::normal_to_world(Vec3 n) const {
     return glm::normalize(glm::transpose(inverse_linear) * n);
 }
 
-float Transform::normal_stretch(Vec3 n) const {
+Real Transform::normal_stretch(Vec3 n) const {
     switch (kind) {
     case TransformClass::identity:
     case TransformClass::translation:
-        return 1.0f;
+        return 1.0_r;
     case TransformClass::uniform_scale:
         return inverse_scale;
     case TransformClass::general:
@@ -179,8 +115,8 @@ Vec3 Transform::roundtrip_error(Vec3 p, Vec3 p_error) const {
     const Vec3 back_error =
         abs_inverse * world_error +
         gamma(3) * (abs_inverse * (world + world_error) + glm::abs(inverse_offset));
-    const float p_sum = abs_p.x + abs_p.y + abs_p.z;
+    const Real p_sum = abs_p.x + abs_p.y + abs_p.z;
     return p_error + back_error + Vec3(roundtrip_linear_error * p_sum + roundtrip_offset_error);
 }
 
-} // namespace glint
+} // namespace glint::inline GLINT_PRECISION

@@ -9,12 +9,12 @@
 #include <chrono>
 #include <cmath>
 
-namespace glint {
+namespace glint::inline GLINT_PRECISION {
 namespace {
 
 // World bounds of M·(object bounds): the eight corners mapped in double, then widened by a few
 // float ulps so that the float box still contains every point the float transform produces.
-Bounds world_bounds(const Bounds& local, const DMat4& m) {
+Bounds world_bounds(const std::pair<DVec3, DVec3>& local, const DMat4& m) {
     const auto [lo, hi] = transformed_box(local, m);
     const DVec3 pad = (glm::abs(lo) + glm::abs(hi) + (hi - lo)) * (8.0 * kUnitRoundoff);
     return {Vec3(lo - pad), Vec3(hi + pad)};
@@ -23,8 +23,11 @@ Bounds world_bounds(const Bounds& local, const DMat4& m) {
 } // namespace
 
 World::World(const Scene& scene, std::optional<AccelKind> accel)
-    : camera_(scene.camera), meshes_(scene.meshes), materials_(scene.materials),
-      background_(scene.background), ambient_(scene.ambient), settings_(scene.render) {
+    : camera_(scene.camera), background_(scene.background), ambient_(scene.ambient),
+      settings_(scene.render) {
+    for (const Material& m : scene.materials)
+        materials_.push_back(
+            {Vec3(m.ambient), Vec3(m.diffuse), Vec3(m.specular), m.shininess, m.reflectivity});
     // Camera-relative coordinates, composed in double: precision follows the scene's size, not
     // its distance from the world origin (DESIGN.md §2).
     const DMat4 to_camera = translation_matrix(-scene.camera.eye);
@@ -33,13 +36,13 @@ World::World(const Scene& scene, std::optional<AccelKind> accel)
         const DMat4 m = to_camera * o.transform;
         const bool bounded = o.shape != ShapeKind::plane;
         objects_.push_back({o.shape, make_transform(m), o.material, o.top_radius, o.mesh, bounded,
-                            bounded ? world_bounds(unit_bounds(o, meshes_), m) : Bounds{}});
+                            bounded ? world_bounds(*unit_box(o, scene.meshes), m) : Bounds{}});
     }
     for (const PointLight& light : scene.lights)
-        lights_.push_back({Vec3(light.position - scene.camera.eye), light.color});
+        lights_.push_back({Vec3(light.position - scene.camera.eye), Vec3(light.color)});
 
     const auto start = std::chrono::steady_clock::now();
-    for (Mesh& mesh : meshes_) prepare_mesh(mesh);
+    for (const TriangleMesh& mesh : scene.meshes) meshes_.push_back(prepare_mesh(mesh));
     std::vector<Bounds> item_bounds;
     for (std::uint32_t i = 0; i < objects_.size(); ++i) {
         if (!objects_[i].bounded) {
@@ -57,7 +60,7 @@ World::World(const Scene& scene, std::optional<AccelKind> accel)
 }
 
 template <class Counters>
-ShapeHit World::intersect_object(const Object& object, const Ray& world_ray, float t_max,
+ShapeHit World::intersect_object(const Object& object, const Ray& world_ray, Real t_max,
                                  Counters& counters) const {
     const Ray ray = object.transform.to_object(world_ray);
     switch (object.shape) {
@@ -84,19 +87,19 @@ ShapeHit World::intersect_object(const Object& object, const Ray& world_ray, flo
 // so every structure returns exactly the list's hit. Each object is therefore tested up to the
 // next float above the best t, and an equal t replaces the best only from a lower index.
 template <class Counters>
-Hit World::closest(const Ray& ray, float t_max, std::uint32_t skip, Counters& counters) const {
+Hit World::closest(const Ray& ray, Real t_max, std::uint32_t skip, Counters& counters) const {
     Hit best;
     best.t = t_max;
     const auto consider = [&](std::uint32_t object) {
         if (object == skip) return;
-        const float limit = best.found() ? std::nextafter(best.t, kInfinity) : best.t;
+        const Real limit = best.found() ? std::nextafter(best.t, kInfinity) : best.t;
         const ShapeHit h = intersect_object(objects_[object], ray, limit, counters);
         if (h.t < best.t || (h.t == best.t && best.found() && object < best.object))
             best = {h.t, object, h.part};
     };
     for (const std::uint32_t object : unbounded_) counters.primitive(), consider(object);
-    float limit = best.t;
-    accel_.traverse(ray, limit, counters, [&](std::uint32_t item, float& t_limit) {
+    Real limit = best.t;
+    accel_.traverse(ray, limit, counters, [&](std::uint32_t item, Real& t_limit) {
         consider(bounded_[item]);
         // Let the structure prune only beyond the best hit (ties at best.t must still be seen).
         t_limit = best.found() ? std::nextafter(best.t, kInfinity) : best.t;
@@ -106,15 +109,15 @@ Hit World::closest(const Ray& ray, float t_max, std::uint32_t skip, Counters& co
 }
 
 template <class Counters>
-bool World::any(const Ray& ray, float t_max, std::uint32_t skip, Counters& counters) const {
+bool World::any(const Ray& ray, Real t_max, std::uint32_t skip, Counters& counters) const {
     for (const std::uint32_t object : unbounded_) {
         counters.primitive();
         if (object != skip && intersect_object(objects_[object], ray, t_max, counters).found())
             return true;
     }
     bool found = false;
-    float limit = t_max;
-    accel_.traverse(ray, limit, counters, [&](std::uint32_t item, float&) {
+    Real limit = t_max;
+    accel_.traverse(ray, limit, counters, [&](std::uint32_t item, Real&) {
         const std::uint32_t object = bounded_[item];
         found = object != skip && intersect_object(objects_[object], ray, t_max, counters).found();
         return found;
@@ -122,19 +125,19 @@ bool World::any(const Ray& ray, float t_max, std::uint32_t skip, Counters& count
     return found;
 }
 
-Hit World::intersect(const Ray& ray, float t_max, std::uint32_t skip) const {
+Hit World::intersect(const Ray& ray, Real t_max, std::uint32_t skip) const {
     if (counting_) return closest(ray, t_max, skip, counters_.local());
     NoCounters none;
     return closest(ray, t_max, skip, none);
 }
 
-bool World::occluded(const Ray& ray, float t_max, std::uint32_t skip) const {
+bool World::occluded(const Ray& ray, Real t_max, std::uint32_t skip) const {
     if (counting_) return any(ray, t_max, skip, counters_.local());
     NoCounters none;
     return any(ray, t_max, skip, none);
 }
 
-Hit World::intersect_one(std::uint32_t object, const Ray& ray, float t_max) const {
+Hit World::intersect_one(std::uint32_t object, const Ray& ray, Real t_max) const {
     NoCounters none;
     const ShapeHit h = intersect_object(objects_[object], ray, t_max, none);
     return h.found() ? Hit{h.t, object, h.part} : Hit{};
@@ -179,7 +182,7 @@ SurfacePoint World::surface(const Ray& ray, const Hit& hit) const {
     const bool planar = object.shape == ShapeKind::plane || object.shape == ShapeKind::disk ||
                         object.shape == ShapeKind::triangle;
     if (planar || (object.shape != ShapeKind::mesh && !from_inside))
-        return {m.point_to_world(s.point), normal, 0.0f, hit.object};
+        return {m.point_to_world(s.point), normal, 0.0_r, hit.object};
     // Spawn offset (Wächter & Binder, Ray Tracing Gems ch. 6; pbrt-v4's OffsetRayOrigin): a new
     // ray from this point is intersected with this object after mapping back by M⁻¹, so it must
     // leave the object-space error box of the point: its extent along the object normal is
@@ -188,8 +191,8 @@ SurfacePoint World::surface(const Ray& ray, const Hit& hit) const {
     // that keeps the sign of the next intersection's near root (c = |o|² − 1 for spheres, o − 1
     // for box faces) clear of its own rounding.
     const Vec3 error = m.roundtrip_error(s.point, s.error);
-    const float offset = 2.0f * glm::dot(glm::abs(s.normal), error) / m.normal_stretch(s.normal);
+    const Real offset = 2.0_r * glm::dot(glm::abs(s.normal), error) / m.normal_stretch(s.normal);
     return {m.point_to_world(s.point), normal, offset, kNoObject};
 }
 
-} // namespace glint
+} // namespace glint::inline GLINT_PRECISION

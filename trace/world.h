@@ -1,10 +1,12 @@
-// The scene prepared for tracing: camera-relative float transforms, object bounds, and the
-// brute-force closest-hit and any-hit queries (the `list` structure every other one must match).
+// The scene prepared for tracing: camera-relative transforms in Real (trace/math.h), object
+// bounds, and the brute-force closest-hit and any-hit queries (the `list` structure every other
+// one must match).
 #pragma once
 
 #include "trace/accel/accel.h"
 #include "trace/camera.h"
 #include "trace/scene.h"
+#include "trace/shapes/mesh.h"
 #include "trace/transform.h"
 
 #include <tbb/enumerable_thread_specific.h>
@@ -12,16 +14,22 @@
 #include <optional>
 #include <vector>
 
-namespace glint {
+namespace glint::inline GLINT_PRECISION {
 
 struct Object {
     ShapeKind shape;
     Transform transform; // object → camera-relative world
     std::uint32_t material;
-    float top_radius;
+    Real top_radius;
     std::uint32_t mesh;
     bool bounded;  // false for planes
     Bounds bounds; // camera-relative world bounds, conservative
+};
+
+// A material as shading reads it (scene colours in the tracer's precision).
+struct Phong {
+    Vec3 ambient, diffuse, specular;
+    Real shininess, reflectivity;
 };
 
 struct Light {
@@ -32,8 +40,8 @@ struct Light {
 // A hit rebuilt for shading, in camera-relative world space.
 struct SurfacePoint {
     Vec3 position;
-    Vec3 normal;  // unit geometric normal, flipped to face the incoming ray
-    float offset; // distance along `normal` that clears the surface's rounding error (0 if skip)
+    Vec3 normal; // unit geometric normal, flipped to face the incoming ray
+    Real offset; // distance along `normal` that clears the surface's rounding error (0 if skip)
     // The object itself when no ray leaving here on the normal's side can meet it again (a
     // convex solid left from outside, or a planar shape): such rays ignore it and start on the
     // surface, so they need no offset. kNoObject otherwise (meshes, solids left from inside).
@@ -51,18 +59,18 @@ class World {
     explicit World(const Scene& scene, std::optional<AccelKind> accel = std::nullopt);
 
     // The closest hit in (0, t_max) on any object but `skip`; ties go to the lower index.
-    Hit intersect(const Ray& ray, float t_max = kInfinity, std::uint32_t skip = kNoObject) const;
+    Hit intersect(const Ray& ray, Real t_max = kInfinity, std::uint32_t skip = kNoObject) const;
     // Whether anything other than object `skip` is hit in (0, t_max).
-    bool occluded(const Ray& ray, float t_max, std::uint32_t skip = kNoObject) const;
+    bool occluded(const Ray& ray, Real t_max, std::uint32_t skip = kNoObject) const;
     // The first hit on one object alone, in (0, t_max).
-    Hit intersect_one(std::uint32_t object, const Ray& ray, float t_max = kInfinity) const;
+    Hit intersect_one(std::uint32_t object, const Ray& ray, Real t_max = kInfinity) const;
     SurfacePoint surface(const Ray& ray, const Hit& hit) const;
 
     const PinholeCamera& camera() const { return camera_; }
     const std::vector<Object>& objects() const { return objects_; }
     const Mesh& mesh(std::uint32_t index) const { return meshes_[index]; }
     const std::vector<Light>& lights() const { return lights_; }
-    const Material& material(std::uint32_t object) const {
+    const Phong& material(std::uint32_t object) const {
         return materials_[objects_[object].material];
     }
     Vec3 background() const { return background_; }
@@ -79,17 +87,17 @@ class World {
 
   private:
     template <class Counters>
-    ShapeHit intersect_object(const Object& object, const Ray& world_ray, float t_max,
+    ShapeHit intersect_object(const Object& object, const Ray& world_ray, Real t_max,
                               Counters& counters) const;
     template <class Counters>
-    Hit closest(const Ray& ray, float t_max, std::uint32_t skip, Counters& counters) const;
+    Hit closest(const Ray& ray, Real t_max, std::uint32_t skip, Counters& counters) const;
     template <class Counters>
-    bool any(const Ray& ray, float t_max, std::uint32_t skip, Counters& counters) const;
+    bool any(const Ray& ray, Real t_max, std::uint32_t skip, Counters& counters) const;
 
     PinholeCamera camera_;
     std::vector<Object> objects_;
     std::vector<Mesh> meshes_;
-    std::vector<Material> materials_;
+    std::vector<Phong> materials_;
     std::vector<Light> lights_;
     Vec3 background_, ambient_;
     RenderSettings settings_;
@@ -101,4 +109,4 @@ class World {
     mutable tbb::enumerable_thread_specific<TraversalCounters> counters_;
 };
 
-} // namespace glint
+} // namespace glint::inline GLINT_PRECISION

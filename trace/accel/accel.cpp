@@ -1,12 +1,6 @@
 #include "trace/accel/accel.h"
 
-namespace glint {
-
-std::optional<AccelKind> accel_from_name(std::string_view name) {
-    for (int k = 0; k < 5; ++k)
-        if (kAccelNames[k] == name) return static_cast<AccelKind>(k);
-    return std::nullopt;
-}
+namespace glint::inline GLINT_PRECISION {
 
 Accelerator::Accelerator(AccelKind kind, std::vector<Bounds> items) {
     switch (kind) {
@@ -36,4 +30,4 @@ std::size_t Accelerator::node_count() const {
     return std::visit([](const auto& s) { return s.node_count(); }, structure_);
 }
 
-} // namespace glint
+} // namespace glint::inline GLINT_PRECISION

@@ -6,6 +6,7 @@
 // virtual call.
 #pragma once
 
+#include "trace/accel/accel_kind.h"
 #include "trace/accel/bvh.h"
 #include "trace/accel/grid.h"
 #include "trace/accel/kd_tree.h"
@@ -16,23 +17,14 @@
 #include <variant>
 #include <vector>
 
-namespace glint {
-
-enum class AccelKind : std::uint8_t { list, bvh, spheres, grid, kd };
-
-inline constexpr std::string_view kAccelNames[] = {"list", "bvh", "spheres", "grid", "kd"};
-
-inline std::string_view accel_name(AccelKind kind) {
-    return kAccelNames[static_cast<int>(kind)];
-}
-std::optional<AccelKind> accel_from_name(std::string_view name);
+namespace glint::inline GLINT_PRECISION {
 
 // Brute force: every item's box, in order. The reference every other structure must match.
 struct ItemList {
     std::vector<Bounds> bounds;
 
     template <class Counters, class Visit>
-    void traverse(const Ray& ray, float& t_max, Counters& counters, Visit&& visit) const {
+    void traverse(const Ray& ray, Real& t_max, Counters& counters, Visit&& visit) const {
         const SlabRay slab(ray);
         for (std::uint32_t i = 0; i < bounds.size(); ++i) {
             counters.node();
@@ -56,7 +48,7 @@ class Accelerator {
     std::size_t node_count() const;
 
     template <class Counters, class Visit>
-    void traverse(const Ray& ray, float& t_max, Counters& counters, Visit&& visit) const {
+    void traverse(const Ray& ray, Real& t_max, Counters& counters, Visit&& visit) const {
         switch (structure_.index()) {
         case 0:
             return std::get<0>(structure_).traverse(ray, t_max, counters, visit);
@@ -75,4 +67,4 @@ class Accelerator {
     std::variant<ItemList, Bvh, SphereTree, UniformGrid, KdTree> structure_;
 };
 
-} // namespace glint
+} // namespace glint::inline GLINT_PRECISION

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <atomic>
 
-namespace glint {
+namespace glint::inline GLINT_PRECISION {
 namespace {
 
 constexpr int kBins = 16;
@@ -42,20 +42,20 @@ struct Builder {
         // Binned SAH over the centroids (Wald 2007): cost of a split ∝ A_left·N_left +
         // A_right·N_right.
         const Vec3 extent = centroid_box.hi - centroid_box.lo;
-        float best_cost = kInfinity;
+        Real best_cost = kInfinity;
         int best_axis = -1, best_split = 0;
         for (int axis = 0; axis < 3; ++axis) {
             if (!(extent[axis] > 0)) continue;
             Bounds bin_box[kBins];
             std::uint32_t bin_count[kBins] = {};
-            const float scale = kBins / extent[axis];
+            const Real scale = kBins / extent[axis];
             for (std::uint32_t i = begin; i < end; ++i) {
                 const int b =
                     bin_index((centres[items[i]][axis] - centroid_box.lo[axis]) * scale, kBins);
                 ++bin_count[b];
                 bin_box[b].extend(bounds[items[i]]);
             }
-            float right_area[kBins];
+            Real right_area[kBins];
             std::uint32_t right_count[kBins];
             Bounds right;
             std::uint32_t n = 0;
@@ -71,19 +71,19 @@ struct Builder {
                 left.extend(bin_box[b]);
                 n += bin_count[b];
                 if (n == 0 || right_count[b + 1] == 0) continue;
-                const float cost = left.area() * n + right_area[b + 1] * right_count[b + 1];
+                const Real cost = left.area() * n + right_area[b + 1] * right_count[b + 1];
                 if (cost < best_cost) best_cost = cost, best_axis = axis, best_split = b;
             }
         }
         // A leaf costs one test per item; a split its children's expected tests (the box tests of
         // the split are left out, which favours splitting; leaves stay small either way).
-        const float leaf_cost = box.area() * count;
+        const Real leaf_cost = box.area() * count;
         if (count <= kMaxLeafSize && (best_axis < 0 || best_cost >= leaf_cost))
             return leaf(node, begin, end);
         std::uint32_t middle;
         if (best_axis >= 0) {
-            const float scale = kBins / extent[best_axis];
-            const float lo = centroid_box.lo[best_axis];
+            const Real scale = kBins / extent[best_axis];
+            const Real lo = centroid_box.lo[best_axis];
             middle = static_cast<std::uint32_t>(
                 std::partition(items.begin() + begin, items.begin() + end,
                                [&](std::uint32_t item) {
@@ -160,4 +160,4 @@ Bvh::Bvh(std::span<const Bounds> item_bounds) {
     nodes_ = std::move(ordered);
 }
 
-} // namespace glint
+} // namespace glint::inline GLINT_PRECISION

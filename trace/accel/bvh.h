@@ -8,7 +8,7 @@
 #include <span>
 #include <vector>
 
-namespace glint {
+namespace glint::inline GLINT_PRECISION {
 
 struct BvhNode {
     Bounds bounds;
@@ -36,16 +36,16 @@ class Bvh {
     std::size_t node_count() const { return nodes_.size(); }
 
     template <class Counters, class Visit>
-    void traverse(const Ray& ray, float& t_max, Counters& counters, Visit&& visit) const {
+    void traverse(const Ray& ray, Real& t_max, Counters& counters, Visit&& visit) const {
         if (nodes_.empty()) return;
         const SlabRay slab(ray);
         struct Entry {
             std::uint32_t node;
-            float t;           // where the ray enters the node's box
+            Real t;            // where the ray enters the node's box
         } stack[kMaxBvhDepth]; // one far child per level at most
         int top = 0;
         counters.node();
-        float t_root = slab.entry(nodes_[0].bounds, t_max);
+        Real t_root = slab.entry(nodes_[0].bounds, t_max);
         if (t_root == kInfinity) return;
         std::uint32_t node = 0;
         for (;;) {
@@ -58,8 +58,8 @@ class Bvh {
             } else {
                 counters.node();
                 counters.node();
-                float near = slab.entry(nodes_[n.first].bounds, t_max);
-                float far = slab.entry(nodes_[n.first + 1].bounds, t_max);
+                Real near = slab.entry(nodes_[n.first].bounds, t_max);
+                Real far = slab.entry(nodes_[n.first + 1].bounds, t_max);
                 std::uint32_t near_node = n.first, far_node = n.first + 1;
                 if (far < near) std::swap(near, far), std::swap(near_node, far_node);
                 if (near != kInfinity) {
@@ -82,4 +82,4 @@ class Bvh {
     std::vector<std::uint32_t> items_;
 };
 
-} // namespace glint
+} // namespace glint::inline GLINT_PRECISION

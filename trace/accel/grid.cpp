@@ -2,23 +2,23 @@
 
 #include <algorithm>
 
-namespace glint {
+namespace glint::inline GLINT_PRECISION {
 
 UniformGrid::UniformGrid(std::span<const Bounds> items) {
     if (items.empty()) return;
     for (const Bounds& b : items) bounds_.extend(b);
     // Pad so that items on the outer faces lie inside the outermost cells.
-    const Vec3 pad = 1e-5f * (bounds_.hi - bounds_.lo) + 1e-30f;
+    const Vec3 pad = 1e-5_r * (bounds_.hi - bounds_.lo) + 1e-30_r;
     bounds_.lo -= pad, bounds_.hi += pad;
     const Vec3 extent = bounds_.hi - bounds_.lo;
     // About three items per cell; cells cubic where the extent allows, 1 to 256 per axis.
-    const float volume =
-        std::max(extent.x, 1e-30f) * std::max(extent.y, 1e-30f) * std::max(extent.z, 1e-30f);
-    const float cell = std::cbrt(volume / (3.0f * static_cast<float>(items.size())));
+    const Real volume =
+        std::max(extent.x, 1e-30_r) * std::max(extent.y, 1e-30_r) * std::max(extent.z, 1e-30_r);
+    const Real cell = std::cbrt(volume / (3.0_r * static_cast<Real>(items.size())));
     for (int a = 0; a < 3; ++a) {
         resolution_[a] = 1 + bin_index(std::ceil(extent[a] / cell) - 1, 256);
-        cell_size_[a] = extent[a] / static_cast<float>(resolution_[a]);
-        inverse_cell_[a] = 1.0f / cell_size_[a];
+        cell_size_[a] = extent[a] / static_cast<Real>(resolution_[a]);
+        inverse_cell_[a] = 1.0_r / cell_size_[a];
     }
     const std::size_t cells =
         static_cast<std::size_t>(resolution_.x) * resolution_.y * resolution_.z;
@@ -54,4 +54,4 @@ UniformGrid::UniformGrid(std::span<const Bounds> items) {
     }
 }
 
-} // namespace glint
+} // namespace glint::inline GLINT_PRECISION

@@ -11,7 +11,7 @@
 #include <span>
 #include <vector>
 
-namespace glint {
+namespace glint::inline GLINT_PRECISION {
 
 class UniformGrid {
   public:
@@ -22,11 +22,11 @@ class UniformGrid {
     std::size_t node_count() const { return cell_start_.empty() ? 0 : cell_start_.size() - 1; }
 
     template <class Counters, class Visit>
-    void traverse(const Ray& ray, float& t_max, Counters& counters, Visit&& visit) const {
+    void traverse(const Ray& ray, Real& t_max, Counters& counters, Visit&& visit) const {
         if (cell_start_.empty()) return;
         const SlabRay slab(ray);
         const Vec3& inverse_direction = slab.inverse_direction;
-        const float t_enter = slab.entry(bounds_, t_max);
+        const Real t_enter = slab.entry(bounds_, t_max);
         if (t_enter == kInfinity) return;
         const Vec3 p = ray.origin + t_enter * ray.direction;
         glm::ivec3 cell, step;
@@ -63,7 +63,7 @@ class UniformGrid {
                 t_next.x < t_next.y ? (t_next.x < t_next.z ? 0 : 2) : (t_next.y < t_next.z ? 1 : 2);
             // A hit before this cell's exit cannot be beaten by anything in later cells. The
             // exit is enlarged by the same relative margin as box tests, for rounding.
-            if (t_max <= t_next[a] * (1.0f + 2.0f * gamma(3)) || t_next[a] == kInfinity) return;
+            if (t_max <= t_next[a] * (1.0_r + 2.0_r * gamma(3)) || t_next[a] == kInfinity) return;
             cell[a] += step[a];
             if (cell[a] < 0 || cell[a] >= resolution_[a]) return;
             t_next[a] += t_delta[a];
@@ -73,10 +73,10 @@ class UniformGrid {
   private:
     Bounds bounds_;
     glm::ivec3 resolution_{0};
-    Vec3 cell_size_{0.0f}, inverse_cell_{0.0f};
+    Vec3 cell_size_{0.0_r}, inverse_cell_{0.0_r};
     std::vector<std::uint32_t>
         cell_start_; // per cell, into cell_items_ (CSR), one extra at the end
     std::vector<std::uint32_t> cell_items_;
 };
 
-} // namespace glint
+} // namespace glint::inline GLINT_PRECISION

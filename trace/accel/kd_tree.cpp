@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
-namespace glint {
+namespace glint::inline GLINT_PRECISION {
 namespace {
 
 constexpr int kBins = 32;
 constexpr std::size_t kMaxLeafSize = 4;
-constexpr float kTraversalCost = 1.0f; // relative to one item test
+constexpr Real kTraversalCost = 1.0_r; // relative to one item test
 
 struct Builder {
     std::span<const Bounds> bounds;
@@ -27,19 +27,19 @@ struct Builder {
         if (n <= kMaxLeafSize || depth >= max_depth) return leaf(index, ids);
         // Binned SAH over candidate planes: N_below counts boxes starting below, N_above boxes
         // ending above; a leaf costs n item tests.
-        const float area = box.area();
-        float best_cost = static_cast<float>(n);
+        const Real area = box.area();
+        Real best_cost = static_cast<Real>(n);
         int best_axis = -1;
-        float best_split = 0;
+        Real best_split = 0;
         for (int a = 0; a < 3; ++a) {
-            const float lo = box.lo[a], extent = box.hi[a] - box.lo[a];
+            const Real lo = box.lo[a], extent = box.hi[a] - box.lo[a];
             if (!(extent > 0)) continue;
             std::size_t starts[kBins] = {}, ends[kBins] = {};
             for (std::uint32_t id : ids) {
-                const float s =
-                    std::clamp((bounds[id].lo[a] - lo) / extent * kBins, 0.0f, kBins - 1.0f);
-                const float e =
-                    std::clamp((bounds[id].hi[a] - lo) / extent * kBins, 0.0f, kBins - 1.0f);
+                const Real s =
+                    std::clamp((bounds[id].lo[a] - lo) / extent * kBins, 0.0_r, kBins - 1.0_r);
+                const Real e =
+                    std::clamp((bounds[id].hi[a] - lo) / extent * kBins, 0.0_r, kBins - 1.0_r);
                 ++starts[static_cast<int>(s)];
                 ++ends[static_cast<int>(e)];
             }
@@ -47,10 +47,10 @@ struct Builder {
             for (int b = 1; b < kBins; ++b) {
                 below += starts[b - 1];
                 above -= ends[b - 1];
-                const float split = lo + extent * b / kBins;
+                const Real split = lo + extent * b / kBins;
                 Bounds lower = box, upper = box;
                 lower.hi[a] = split, upper.lo[a] = split;
-                const float cost =
+                const Real cost =
                     kTraversalCost + (lower.area() * below + upper.area() * above) / area;
                 if (cost < best_cost) best_cost = cost, best_axis = a, best_split = split;
             }
@@ -91,4 +91,4 @@ KdTree::KdTree(std::span<const Bounds> item_bounds) {
     Builder{item_bounds, nodes_, items_, max_depth}.build(0, bounds_, std::move(ids), 0);
 }
 
-} // namespace glint
+} // namespace glint::inline GLINT_PRECISION

@@ -9,10 +9,10 @@
 #include <span>
 #include <vector>
 
-namespace glint {
+namespace glint::inline GLINT_PRECISION {
 
 struct KdNode {
-    float split;         // inner: plane position on `axis`
+    Real split;          // inner: plane position on `axis`
     std::uint32_t first; // inner: index of the below child (above = +1); leaf: first into items
     std::uint32_t count; // leaf: number of items
     std::uint8_t axis;   // 0, 1, 2; 3 for a leaf
@@ -27,15 +27,15 @@ class KdTree {
     std::size_t node_count() const { return nodes_.size(); }
 
     template <class Counters, class Visit>
-    void traverse(const Ray& ray, float& t_max, Counters& counters, Visit&& visit) const {
+    void traverse(const Ray& ray, Real& t_max, Counters& counters, Visit&& visit) const {
         if (nodes_.empty()) return;
         const SlabRay slab(ray);
         const Vec3& inverse_direction = slab.inverse_direction;
-        float t_min, t_end; // the ray's segment inside the root box
+        Real t_min, t_end; // the ray's segment inside the root box
         if (!slab.clip(bounds_, t_max, t_min, t_end)) return;
         struct Segment {
             std::uint32_t node;
-            float t_min, t_max;
+            Real t_min, t_max;
         } stack[128];
         int top = 0;
         std::uint32_t node = 0;
@@ -59,7 +59,7 @@ class KdTree {
                 continue;
             }
             const int a = n.axis;
-            const float o = ray.origin[a], d = ray.direction[a];
+            const Real o = ray.origin[a], d = ray.direction[a];
             const bool below_first = o < n.split || (o == n.split && d <= 0);
             const std::uint32_t first = below_first ? n.first : n.first + 1;
             const std::uint32_t second = below_first ? n.first + 1 : n.first;
@@ -67,7 +67,7 @@ class KdTree {
                 node = first;
                 continue;
             }
-            const float t_plane = (n.split - o) * inverse_direction[a];
+            const Real t_plane = (n.split - o) * inverse_direction[a];
             if (t_plane > t_end || t_plane <= 0) {
                 node = first;
             } else if (t_plane < t_min) {
@@ -86,4 +86,4 @@ class KdTree {
     std::vector<std::uint32_t> items_;
 };
 
-} // namespace glint
+} // namespace glint::inline GLINT_PRECISION

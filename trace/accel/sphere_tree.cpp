@@ -1,19 +1,19 @@
 #include "trace/accel/sphere_tree.h"
 
-namespace glint {
+namespace glint::inline GLINT_PRECISION {
 namespace {
 
 BoundingSphere around(const Bounds& b) {
-    return {b.centre(), 0.5f * glm::length(b.hi - b.lo)};
+    return {b.centre(), 0.5_r * glm::length(b.hi - b.lo)};
 }
 
 // The smallest sphere enclosing two spheres.
 BoundingSphere merge(const BoundingSphere& a, const BoundingSphere& b) {
-    const float d = glm::length(b.centre - a.centre);
+    const Real d = glm::length(b.centre - a.centre);
     if (d + b.radius <= a.radius) return a;
     if (d + a.radius <= b.radius) return b;
-    const float radius = 0.5f * (d + a.radius + b.radius);
-    return {a.centre + ((radius - a.radius) / d) * (b.centre - a.centre), radius * (1 + 1e-6f)};
+    const Real radius = 0.5_r * (d + a.radius + b.radius);
+    return {a.centre + ((radius - a.radius) / d) * (b.centre - a.centre), radius * (1 + 1e-6_r)};
 }
 
 } // namespace
@@ -35,4 +35,4 @@ SphereTree::SphereTree(std::span<const Bounds> items) : topology_(items) {
     }
 }
 
-} // namespace glint
+} // namespace glint::inline GLINT_PRECISION

@@ -7,11 +7,11 @@
 
 #include <cmath>
 
-namespace glint {
+namespace glint::inline GLINT_PRECISION {
 
 struct BoundingSphere {
     Vec3 centre;
-    float radius;
+    Real radius;
 };
 
 class SphereTree {
@@ -25,23 +25,23 @@ class SphereTree {
     std::size_t node_count() const { return spheres_.size(); }
 
     // Entry distance into a sphere over [0, t_max], or infinity.
-    static float entry_distance(const BoundingSphere& s, const Ray& ray, float t_max) {
+    static Real entry_distance(const BoundingSphere& s, const Ray& ray, Real t_max) {
         const Vec3 oc = s.centre - ray.origin;
-        const float a = glm::dot(ray.direction, ray.direction);
-        const float b = glm::dot(oc, ray.direction);
+        const Real a = glm::dot(ray.direction, ray.direction);
+        const Real b = glm::dot(oc, ray.direction);
         // Padded by a relative 1e-5 for the rounding of this test (|oc|² and b² carry ~1e-7).
-        const float r = s.radius * (1 + 1e-5f) + 1e-5f * std::sqrt(glm::dot(oc, oc));
+        const Real r = s.radius * (1 + 1e-5_r) + 1e-5_r * std::sqrt(glm::dot(oc, oc));
         const Vec3 closest = oc - (b / a) * ray.direction; // cancellation-free, as for spheres
-        const float discriminant = a * (r * r - glm::dot(closest, closest));
+        const Real discriminant = a * (r * r - glm::dot(closest, closest));
         if (discriminant < 0) return kInfinity;
-        const float root = std::sqrt(discriminant);
-        const float t0 = (b - root) / a, t1 = (b + root) / a;
+        const Real root = std::sqrt(discriminant);
+        const Real t0 = (b - root) / a, t1 = (b + root) / a;
         if (t1 < 0 || t0 > t_max) return kInfinity;
-        return std::max(t0, 0.0f);
+        return std::max(t0, 0.0_r);
     }
 
     template <class Counters, class Visit>
-    void traverse(const Ray& ray, float& t_max, Counters& counters, Visit&& visit) const {
+    void traverse(const Ray& ray, Real& t_max, Counters& counters, Visit&& visit) const {
         const auto& nodes = topology_.nodes();
         if (nodes.empty()) return;
         std::uint32_t stack[kMaxBvhDepth]; // the BVH's topology, so its depth
@@ -59,8 +59,8 @@ class SphereTree {
             } else {
                 counters.node();
                 counters.node();
-                float near = entry_distance(spheres_[n.first], ray, t_max);
-                float far = entry_distance(spheres_[n.first + 1], ray, t_max);
+                Real near = entry_distance(spheres_[n.first], ray, t_max);
+                Real far = entry_distance(spheres_[n.first + 1], ray, t_max);
                 std::uint32_t near_node = n.first, far_node = n.first + 1;
                 if (far < near) std::swap(near, far), std::swap(near_node, far_node);
                 if (near != kInfinity) {
@@ -83,4 +83,4 @@ class SphereTree {
     std::vector<BoundingSphere> spheres_; // per node of topology_
 };
 
-} // namespace glint
+} // namespace glint::inline GLINT_PRECISION

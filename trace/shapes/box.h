@@ -5,21 +5,21 @@
 
 #include <cmath>
 
-namespace glint {
+namespace glint::inline GLINT_PRECISION {
 
 // Face numbering: part = 2·axis + (1 for the +1 face, 0 for the −1 face).
-inline ShapeHit intersect_box(const Ray& ray, float t_max) {
-    float t_near = -kInfinity, t_far = kInfinity;
+inline ShapeHit intersect_box(const Ray& ray, Real t_max) {
+    Real t_near = -kInfinity, t_far = kInfinity;
     std::uint32_t near_face = 0, far_face = 0;
     for (int axis = 0; axis < 3; ++axis) {
-        const float o = ray.origin[axis];
-        const float d = ray.direction[axis];
+        const Real o = ray.origin[axis];
+        const Real d = ray.direction[axis];
         if (d == 0) {
-            if (o < -1.0f || o > 1.0f) return {}; // parallel to this slab and outside it
+            if (o < -1.0_r || o > 1.0_r) return {}; // parallel to this slab and outside it
             continue;
         }
-        float t0 = (-1.0f - o) / d;
-        float t1 = (1.0f - o) / d;
+        Real t0 = (-1.0_r - o) / d;
+        Real t1 = (1.0_r - o) / d;
         std::uint32_t face0 = 2 * axis, face1 = 2 * axis + 1;
         if (t0 > t1) {
             std::swap(t0, t1);
@@ -35,13 +35,13 @@ inline ShapeHit intersect_box(const Ray& ray, float t_max) {
 
 inline SurfaceSample box_surface(Vec3 p, std::uint32_t face) {
     const int axis = static_cast<int>(face / 2);
-    const float side = (face % 2) ? 1.0f : -1.0f;
+    const Real side = (face % 2) ? 1.0_r : -1.0_r;
     Vec3 error = gamma(3) * glm::abs(p);
     p[axis] = side; // exact on the face
-    error[axis] = 0.0f;
-    Vec3 normal(0.0f);
+    error[axis] = 0.0_r;
+    Vec3 normal(0.0_r);
     normal[axis] = side;
     return {p, normal, error};
 }
 
-} // namespace glint
+} // namespace glint::inline GLINT_PRECISION

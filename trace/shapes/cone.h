@@ -6,9 +6,9 @@
 
 #include <cmath>
 
-namespace glint {
+namespace glint::inline GLINT_PRECISION {
 
-inline ShapeHit intersect_cone(const Ray& ray, float top_radius, float t_max) {
+inline ShapeHit intersect_cone(const Ray& ray, Real top_radius, Real t_max) {
     // x² + z² = (1 − k·y)², k = 1 − top_radius. The quadratic has no closest-approach form like
     // the sphere's, so it is solved in double: cones are few and b² − ac then keeps its digits.
     const double k = 1.0 - top_radius;
@@ -22,7 +22,7 @@ inline ShapeHit intersect_cone(const Ray& ray, float top_radius, float t_max) {
     ShapeHit best;
     auto side = [&](double t) {
         const double y = o.y + t * d.y;
-        if (y >= 0.0 && y <= 1.0) best = closer(best, candidate(static_cast<float>(t), t_max, 0));
+        if (y >= 0.0 && y <= 1.0) best = closer(best, candidate(static_cast<Real>(t), t_max, 0));
     };
     if (a == 0) {
         if (b != 0) side(-c / (2 * b)); // parallel to a slant line: one crossing
@@ -34,27 +34,27 @@ inline ShapeHit intersect_cone(const Ray& ray, float top_radius, float t_max) {
             side(q / a);
         }
     }
-    best = closer(best, intersect_cap(ray, 0.0f, 1.0f, t_max, 1));
-    if (top_radius > 0) best = closer(best, intersect_cap(ray, 1.0f, top_radius, t_max, 2));
+    best = closer(best, intersect_cap(ray, 0.0_r, 1.0_r, t_max, 1));
+    if (top_radius > 0) best = closer(best, intersect_cap(ray, 1.0_r, top_radius, t_max, 2));
     return best;
 }
 
-inline SurfaceSample cone_surface(Vec3 p, std::uint32_t part, float top_radius) {
+inline SurfaceSample cone_surface(Vec3 p, std::uint32_t part, Real top_radius) {
     if (part != 0) return cap_surface(p, part);
-    const float k = 1.0f - top_radius;
-    const float radius = 1.0f - k * p.y;
-    const float rho = std::sqrt(p.x * p.x + p.z * p.z);
+    const Real k = 1.0_r - top_radius;
+    const Real radius = 1.0_r - k * p.y;
+    const Real rho = std::sqrt(p.x * p.x + p.z * p.z);
     const Vec3 on_side = rho > 0 ? Vec3(p.x * radius / rho, p.y, p.z * radius / rho) : p;
     // Gradient of x² + z² − (1 − k·y)²; at the apex (radius 0) the axis is the best normal.
     const Vec3 gradient(on_side.x, k * radius, on_side.z);
-    const float length = glm::length(gradient);
-    const Vec3 normal = length > 0 ? gradient / length : Vec3(0.0f, 1.0f, 0.0f);
+    const Real length = glm::length(gradient);
+    const Vec3 normal = length > 0 ? gradient / length : Vec3(0.0_r, 1.0_r, 0.0_r);
     // y carries o + t·d's error (γ3); the radial projection adds γ5 and passes y's error on
     // through r(y), scaled by |k|.
-    const float y_error = gamma(3) * std::abs(p.y);
+    const Real y_error = gamma(3) * std::abs(p.y);
     const Vec3 error(gamma(5) * std::abs(on_side.x) + std::abs(k) * y_error, y_error,
                      gamma(5) * std::abs(on_side.z) + std::abs(k) * y_error);
     return {on_side, normal, error};
 }
 
-} // namespace glint
+} // namespace glint::inline GLINT_PRECISION

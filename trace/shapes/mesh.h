@@ -8,15 +8,16 @@
 #include <array>
 #include <vector>
 
-namespace glint {
+namespace glint::inline GLINT_PRECISION {
 
+// A scene's triangle mesh prepared for tracing (see prepare_mesh).
 struct Mesh {
     std::vector<Vec3> vertices;
     std::vector<glm::uvec3> triangles; // indices into vertices
     Bounds bounds;                     // of the vertices, object space
-    Bvh bvh;                           // over the triangles, object space; see prepare_mesh
-    // The three corners of each triangle side by side (see prepare_mesh): one load per
-    // triangle instead of an index and three scattered vertices.
+    Bvh bvh;                           // over the triangles, object space
+    // The three corners of each triangle side by side: one load per triangle instead of an
+    // index and three scattered vertices.
     std::vector<std::array<Vec3, 3>> corners;
 };
 
@@ -33,8 +34,8 @@ inline std::vector<Bounds> triangle_bounds(const Mesh& mesh) {
 }
 
 struct TriangleHit {
-    float t = kInfinity;
-    float u = 0, v = 0; // barycentric weights of vertices 1 and 2
+    Real t = kInfinity;
+    Real u = 0, v = 0; // barycentric weights of vertices 1 and 2
 };
 
 // A ray prepared for the watertight test (Woop, Benthin & Wald, JCGT 2013): the axis of its
@@ -44,7 +45,7 @@ struct TriangleHit {
 struct WatertightRay {
     Vec3 origin;
     int kx, ky, kz;
-    float sx, sy, sz;
+    Real sx, sy, sz;
 
     explicit WatertightRay(const Ray& ray) : origin(ray.origin) {
         const Vec3 a = glm::abs(ray.direction);
@@ -54,25 +55,25 @@ struct WatertightRay {
         if (ray.direction[kz] < 0) std::swap(kx, ky); // keep the winding
         sx = ray.direction[kx] / ray.direction[kz];
         sy = ray.direction[ky] / ray.direction[kz];
-        sz = 1.0f / ray.direction[kz];
+        sz = 1.0_r / ray.direction[kz];
     }
 };
 
 inline TriangleHit intersect_triangle(Vec3 p0, Vec3 p1, Vec3 p2, const WatertightRay& r) {
     const Vec3 a = p0 - r.origin, b = p1 - r.origin, c = p2 - r.origin;
-    const float ax = a[r.kx] - r.sx * a[r.kz], ay = a[r.ky] - r.sy * a[r.kz];
-    const float bx = b[r.kx] - r.sx * b[r.kz], by = b[r.ky] - r.sy * b[r.kz];
-    const float cx = c[r.kx] - r.sx * c[r.kz], cy = c[r.ky] - r.sy * c[r.kz];
-    float u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
+    const Real ax = a[r.kx] - r.sx * a[r.kz], ay = a[r.ky] - r.sy * a[r.kz];
+    const Real bx = b[r.kx] - r.sx * b[r.kz], by = b[r.ky] - r.sy * b[r.kz];
+    const Real cx = c[r.kx] - r.sx * c[r.kz], cy = c[r.ky] - r.sy * c[r.kz];
+    Real u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
     if (u == 0 || v == 0 || w == 0) { // on an edge in float: decide in double, as the paper does
-        u = static_cast<float>(double(cx) * by - double(cy) * bx);
-        v = static_cast<float>(double(ax) * cy - double(ay) * cx);
-        w = static_cast<float>(double(bx) * ay - double(by) * ax);
+        u = static_cast<Real>(double(cx) * by - double(cy) * bx);
+        v = static_cast<Real>(double(ax) * cy - double(ay) * cx);
+        w = static_cast<Real>(double(bx) * ay - double(by) * ax);
     }
     if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return {};
-    const float det = u + v + w;
+    const Real det = u + v + w;
     if (det == 0) return {};
-    const float t = (u * r.sz * a[r.kz] + v * r.sz * b[r.kz] + w * r.sz * c[r.kz]) / det;
+    const Real t = (u * r.sz * a[r.kz] + v * r.sz * b[r.kz] + w * r.sz * c[r.kz]) / det;
     return {t, v / det, w / det};
 }
 
@@ -80,29 +81,37 @@ inline TriangleHit intersect_triangle(Vec3 p0, Vec3 p1, Vec3 p2, const Ray& ray)
     return intersect_triangle(p0, p1, p2, WatertightRay(ray));
 }
 
-// Builds what intersect_mesh reads: every triangle's corners, and above 8 triangles a BVH
-// over them (the bottom level of a two-level structure: to the top level a mesh is one object).
-inline void prepare_mesh(Mesh& mesh) {
-    mesh.corners.clear();
+// Builds what intersect_mesh reads: the vertices and their bounds, every triangle's corners,
+// and above 8 triangles a BVH over them (the bottom level of a two-level structure: to the top
+// level a mesh is one object).
+inline Mesh prepare_mesh(const TriangleMesh& given) {
+    Mesh mesh;
+    mesh.triangles = given.triangles;
+    mesh.vertices.reserve(given.vertices.size());
+    for (const glm::vec3& v : given.vertices) {
+        mesh.vertices.push_back(Vec3(v));
+        mesh.bounds.extend(mesh.vertices.back());
+    }
     mesh.corners.reserve(mesh.triangles.size());
     for (const glm::uvec3& t : mesh.triangles)
         mesh.corners.push_back({mesh.vertices[t.x], mesh.vertices[t.y], mesh.vertices[t.z]});
     if (mesh.triangles.size() > 8) mesh.bvh = Bvh(triangle_bounds(mesh));
+    return mesh;
 }
 
 // The nearest triangle: through the mesh's own BVH (the bottom level of a two-level structure),
 // or, for meshes too small to have one, all of them.
 template <class Counters>
-ShapeHit intersect_mesh(const Mesh& mesh, const Ray& ray, float t_max, Counters& counters) {
+ShapeHit intersect_mesh(const Mesh& mesh, const Ray& ray, Real t_max, Counters& counters) {
     ShapeHit best;
     const WatertightRay prepared(ray); // once per ray, not per triangle
-    const auto test = [&](std::uint32_t i, float& limit) {
+    const auto test = [&](std::uint32_t i, Real& limit) {
         const std::array<Vec3, 3>& c = mesh.corners[i];
         const TriangleHit h = intersect_triangle(c[0], c[1], c[2], prepared);
         if (h.t > 0 && h.t < limit && h.t < best.t) best = {h.t, i}, limit = h.t;
         return false;
     };
-    float limit = t_max;
+    Real limit = t_max;
     if (!mesh.bvh.nodes().empty()) {
         mesh.bvh.traverse(ray, limit, counters, test);
     } else {
@@ -117,7 +126,7 @@ inline SurfaceSample mesh_surface(const Mesh& mesh, const Ray& ray, std::uint32_
     const glm::uvec3 tri = mesh.triangles[triangle];
     const Vec3 p0 = mesh.vertices[tri.x], p1 = mesh.vertices[tri.y], p2 = mesh.vertices[tri.z];
     const TriangleHit h = intersect_triangle(p0, p1, p2, ray);
-    const float b0 = 1.0f - h.u - h.v;
+    const Real b0 = 1.0_r - h.u - h.v;
     // Barycentric interpolation keeps the point on the triangle's plane up to γ7·Σ|bᵢ·pᵢ|
     // (pbrt-v4, Triangle::InteractionFromIntersection).
     const Vec3 point = b0 * p0 + h.u * p1 + h.v * p2;
@@ -125,4 +134,4 @@ inline SurfaceSample mesh_surface(const Mesh& mesh, const Ray& ray, std::uint32_
     return {point, glm::normalize(glm::cross(p1 - p0, p2 - p0)), error};
 }
 
-} // namespace glint
+} // namespace glint::inline GLINT_PRECISION

@@ -3,28 +3,29 @@
 
 #include "trace/shapes/shape.h"
 
-namespace glint {
+namespace glint::inline GLINT_PRECISION {
 
-inline float plane_t(const Ray& ray) {
+inline Real plane_t(const Ray& ray) {
     // A ray parallel to the plane (d.y = 0) gives ±inf or NaN, which candidate() rejects.
     return -ray.origin.y / ray.direction.y;
 }
 
-inline ShapeHit intersect_plane(const Ray& ray, float t_max) {
+inline ShapeHit intersect_plane(const Ray& ray, Real t_max) {
     return candidate(plane_t(ray), t_max, 0);
 }
 
-inline ShapeHit intersect_disk(const Ray& ray, float t_max) {
-    const float t = plane_t(ray);
+inline ShapeHit intersect_disk(const Ray& ray, Real t_max) {
+    const Real t = plane_t(ray);
     const Vec3 p = ray.origin + t * ray.direction;
-    if (p.x * p.x + p.z * p.z > 1.0f) return {};
+    if (p.x * p.x + p.z * p.z > 1.0_r) return {};
     return candidate(t, t_max, 0);
 }
 
 inline SurfaceSample plane_surface(Vec3 p) {
     // y is set exactly; x and z come from o + t·d (tangent errors never move p off the plane).
-    return {
-        {p.x, 0.0f, p.z}, {0.0f, 1.0f, 0.0f}, gamma(3) * Vec3(std::abs(p.x), 0.0f, std::abs(p.z))};
+    return {{p.x, 0.0_r, p.z},
+            {0.0_r, 1.0_r, 0.0_r},
+            gamma(3) * Vec3(std::abs(p.x), 0.0_r, std::abs(p.z))};
 }
 
-} // namespace glint
+} // namespace glint::inline GLINT_PRECISION

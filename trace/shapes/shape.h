@@ -5,23 +5,10 @@
 #include "trace/math.h"
 #include "trace/ray.h"
 
-#include <array>
-#include <string_view>
-
-namespace glint {
-
-// The closed set of shapes (DESIGN.md §3). One switch in World dispatches on it.
-enum class ShapeKind : std::uint8_t { sphere, plane, box, disk, cylinder, cone, triangle, mesh };
-
-inline constexpr std::array<std::string_view, 8> kShapeNames = {
-    "sphere", "plane", "box", "disk", "cylinder", "cone", "triangle", "mesh"};
-
-inline std::string_view shape_name(ShapeKind kind) {
-    return kShapeNames[static_cast<int>(kind)];
-}
+namespace glint::inline GLINT_PRECISION {
 
 struct ShapeHit {
-    float t = kInfinity;
+    Real t = kInfinity;
     std::uint32_t part = 0; // box face, cylinder/cone side or cap, triangle index
 
     bool found() const { return t != kInfinity; }
@@ -40,8 +27,8 @@ inline ShapeHit closer(ShapeHit a, ShapeHit b) {
 }
 
 // A candidate t counts when it lies in the open interval (0, t_max).
-inline ShapeHit candidate(float t, float t_max, std::uint32_t part) {
+inline ShapeHit candidate(Real t, Real t_max, std::uint32_t part) {
     return (t > 0 && t < t_max) ? ShapeHit{t, part} : ShapeHit{};
 }
 
-} // namespace glint
+} // namespace glint::inline GLINT_PRECISION

@@ -6,24 +6,24 @@
 #include <cmath>
 #include <utility>
 
-namespace glint {
+namespace glint::inline GLINT_PRECISION {
 
 // Solves |o + t·d|² = 1 without catastrophic cancellation (Ray Tracing Gems ch. 7, Haines et
 // al.): the discriminant b² − ac is computed as a·(1 − |o − (b/a)·d|²), the squared distance of
 // the closest approach, and the roots as q/a and c/q with q = −(b + sign(b)·√Δ). A small sphere
 // far from the origin stays round instead of turning blocky or vanishing.
-inline ShapeHit intersect_sphere(const Ray& ray, float t_max) {
+inline ShapeHit intersect_sphere(const Ray& ray, Real t_max) {
     const Vec3 o = ray.origin;
     const Vec3 d = ray.direction;
-    const float a = glm::dot(d, d);
-    const float b = glm::dot(o, d); // half of the textbook b
-    const float c = glm::dot(o, o) - 1.0f;
+    const Real a = glm::dot(d, d);
+    const Real b = glm::dot(o, d); // half of the textbook b
+    const Real c = glm::dot(o, o) - 1.0_r;
     const Vec3 closest = o - (b / a) * d;
-    const float discriminant = a * (1.0f - glm::dot(closest, closest));
+    const Real discriminant = a * (1.0_r - glm::dot(closest, closest));
     if (discriminant < 0) return {};
-    const float q = -(b + std::copysign(std::sqrt(discriminant), b));
-    float t0 = c / q;
-    float t1 = q / a;
+    const Real q = -(b + std::copysign(std::sqrt(discriminant), b));
+    Real t0 = c / q;
+    Real t1 = q / a;
     if (t0 > t1) std::swap(t0, t1);
     const ShapeHit near = candidate(t0, t_max, 0);
     return near.found() ? near : candidate(t1, t_max, 0);
@@ -35,4 +35,4 @@ inline SurfaceSample sphere_surface(Vec3 p) {
     return {on_sphere, on_sphere, gamma(5) * glm::abs(on_sphere)};
 }
 
-} // namespace glint
+} // namespace glint::inline GLINT_PRECISION
