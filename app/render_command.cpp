@@ -2,6 +2,7 @@
 #include "app/options.h"
 #include "app/progress.h"
 
+#include "trace/cutoff.h"
 #include "trace/image.h"
 
 #include <nlohmann/json.hpp>
@@ -72,6 +73,7 @@ int run_render(const RenderArgs& args) {
         args.frame.threads > 0 ? args.frame.threads : tbb::this_task_arena::max_concurrency();
     const RayCounts& rays = frame.result.rays;
     const PhaseTimes& t = frame.times;
+    const CutoffBound cutoff = cutoff_bound(scene, frame.result);
 
     if (!args.stats.empty()) {
         nlohmann::ordered_json stats = {
@@ -96,6 +98,10 @@ int run_render(const RenderArgs& args) {
               {"total", total_seconds}}},
             {"rays",
              {{"primary", rays.primary}, {"shadow", rays.shadow}, {"reflection", rays.reflection}}},
+            {"cutoff",
+             {{"bound_max_255", cutoff.max},
+              {"pixels_over_1_255", cutoff.pixels_over_one},
+              {"largest_omitted_weight", cutoff.largest_omitted_weight}}},
         };
         // Per ray: over every query the tracer made (primary, shadow and reflection rays, and in
         // hybrid mode the resolve's exact-interval queries, counted with the primary rays).
@@ -134,6 +140,15 @@ int run_render(const RenderArgs& args) {
                 static_cast<unsigned long long>(rays.primary),
                 static_cast<unsigned long long>(rays.shadow),
                 static_cast<unsigned long long>(rays.reflection));
+    if (cutoff.largest_omitted_weight == 0)
+        std::printf("reflection cut-off: no reflection ray omitted\n");
+    else
+        std::printf("reflection cut-off (max depth %d, min reflectivity %g): every pixel within "
+                    "%d/255 of the untruncated image, %llu may be off by more than 1/255 "
+                    "(heaviest omitted path weight %.3g)\n",
+                    scene.render.max_depth, static_cast<double>(scene.render.min_reflectivity),
+                    cutoff.max, static_cast<unsigned long long>(cutoff.pixels_over_one),
+                    cutoff.largest_omitted_weight);
     return 0;
 }
 

@@ -1,0 +1,97 @@
+// The double-precision tracer as the float one's reference, and the reflection cut-off's error
+// bound (trace/cutoff.h) checked pixel by pixel against renders that were not cut off.
+#include "test_scenes.h"
+
+#include "trace/cutoff.h"
+#include "trace/image_metrics.h"
+#include "trace/precision.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+namespace glint {
+namespace {
+
+Scene shipped(const std::string& name, int width, int height) {
+    Scene scene = load_scene(std::filesystem::path(GLINT_SOURCE_DIR) / "scenes" / (name + ".json"));
+    scene.camera.width = width, scene.camera.height = height;
+    return scene;
+}
+
+class ShippedScene : public ::testing::TestWithParam<std::string> {};
+
+// Float and double trace the same rays; they may part only where a ray grazes an edge (a pixel
+// whose primary object differs, or whose reflection or shadow ray does). Tolerance: at most
+// 0.2% of pixels off by more than 1/255 (at 200×150: 60 pixels, edges of curved outlines and
+// shadow boundaries), and the float image within 45 dB of the double one overall.
+TEST_P(ShippedScene, FloatRendersWhatTheDoublePrecisionReferenceRenders) {
+    const Scene scene = shipped(GetParam(), 200, 150);
+    const RayFrame single = render_ray_frame(Precision::f32, scene, std::nullopt);
+    const RayFrame reference = render_ray_frame(Precision::f64, scene, std::nullopt);
+    EXPECT_GE(id_agreement(reference.ids, single.ids), 0.999);
+    const ImageDifference diff = compare_images(reference.result.image, single.result.image);
+    EXPECT_LE(diff.fraction_over_one, 0.002);
+    EXPECT_GE(diff.psnr_db, 45.0);
+    EXPECT_EQ(reference.result.rays.primary, single.result.rays.primary);
+}
+
+// The bound is a bound: against a render of the same scene with reflections followed as deep as
+// glint allows and no weight cut-off, every channel of every pixel of a truncated render lies
+// below it by at least 0 and at most the pixel's bound. Both renders share every ray up to the
+// cut, so nothing but the omitted term separates them.
+TEST_P(ShippedScene, TheReflectionCutOffBoundHoldsOnEveryPixel) {
+    Scene deep = shipped(GetParam(), 160, 120);
+    deep.render = {64, 0.0f};
+    const Image untruncated = render_ray_frame(Precision::f32, deep, std::nullopt).result.image;
+    for (const int depth : {0, 1, 2, 3, 5, 8}) {
+        for (const float cutoff : {0.0f, 0.01f, 0.1f}) {
+            Scene scene = deep;
+            scene.render = {depth, cutoff};
+            const RenderResult truncated =
+                render_ray_frame(Precision::f32, scene, std::nullopt).result;
+            const CutoffBound bound = cutoff_bound(scene, truncated);
+            int violations = 0;
+            for (std::size_t i = 0; i < bound.per_pixel.size(); ++i)
+                for (int c = 0; c < 3; ++c) {
+                    const int below = untruncated.rgb[3 * i + c] - truncated.image.rgb[3 * i + c];
+                    violations += below < 0 || below > bound.per_pixel[i];
+                }
+            EXPECT_EQ(violations, 0) << "max_depth " << depth << ", min_reflectivity " << cutoff;
+        }
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene,
+                         ::testing::Values("default", "mirrors", "primitives", "shadows",
+                                           "transforms"));
+
+// Two facing mirrors of reflectivity 0.9: what is cut off is at most 0.9^(depth+1) of what a
+// ray can see, so the bound shrinks geometrically with depth, and once it is below 1/255 the
+// render is the untruncated image.
+TEST(Cutoff, TheBoundShrinksWithDepthBetweenFacingMirrors) {
+    Scene scene = shipped("mirrors", 120, 90);
+    scene.render.min_reflectivity = 0;
+    int previous = 256;
+    for (const int depth : {0, 4, 16, 64}) {
+        scene.render.max_depth = depth;
+        const CutoffBound bound =
+            cutoff_bound(scene, render_ray_frame(Precision::f32, scene, std::nullopt).result);
+        EXPECT_LE(bound.max, previous) << "max_depth " << depth;
+        previous = bound.max;
+    }
+    EXPECT_LE(previous, 1);
+}
+
+// Where nothing reflects, nothing is cut off, whatever the depth.
+TEST(Cutoff, ASceneWithoutMirrorsHasANullBound) {
+    Scene scene = shipped("shadows", 80, 60);
+    scene.render.max_depth = 0;
+    const CutoffBound bound =
+        cutoff_bound(scene, render_ray_frame(Precision::f32, scene, std::nullopt).result);
+    EXPECT_EQ(bound.max, 0);
+    EXPECT_EQ(bound.largest_omitted_weight, 0.0);
+}
+
+} // namespace
+} // namespace glint

@@ -1,0 +1,47 @@
+#include "trace/cutoff.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace glint {
+
+glm::dvec3 ray_radiance_bound(const Scene& scene) {
+    glm::dvec3 light_sum(0.0);
+    for (const PointLight& light : scene.lights) light_sum += glm::dvec3(light.color);
+    glm::dvec3 local = glm::dvec3(scene.background);
+    double reflectivity = 0;
+    for (const Material& m : scene.materials) {
+        const glm::dvec3 hit = glm::dvec3(m.ambient) * glm::dvec3(scene.ambient) +
+                               light_sum * (glm::dvec3(m.diffuse) + glm::dvec3(m.specular));
+        local = glm::max(local, hit);
+        reflectivity = std::max(reflectivity, double(m.reflectivity));
+    }
+    if (reflectivity < 1) return local / (1 - reflectivity);
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    return {local.x > 0 ? inf : 0, local.y > 0 ? inf : 0, local.z > 0 ? inf : 0};
+}
+
+CutoffBound cutoff_bound(const Scene& scene, const RenderResult& render) {
+    const glm::dvec3 radiance = ray_radiance_bound(scene);
+    CutoffBound bound;
+    bound.per_pixel.assign(render.omitted_weight.size(), 0);
+    for (std::size_t i = 0; i < render.omitted_weight.size(); ++i) {
+        const double weight = render.omitted_weight[i];
+        bound.largest_omitted_weight = std::max(bound.largest_omitted_weight, weight);
+        if (weight == 0) continue;
+        int pixel = 0;
+        for (int c = 0; c < 3; ++c) {
+            const int headroom = 255 - render.image.rgb[3 * i + c];
+            // (1 + 1e-6) absorbs the rounding of the weight and of the sums it is compared with.
+            const double steps = std::ceil(255 * weight * radiance[c] * (1 + 1e-6));
+            pixel = std::max(pixel, steps < headroom ? static_cast<int>(steps) : headroom);
+        }
+        bound.per_pixel[i] = static_cast<std::uint8_t>(pixel);
+        bound.max = std::max(bound.max, pixel);
+        bound.pixels_over_one += pixel > 1;
+    }
+    return bound;
+}
+
+} // namespace glint

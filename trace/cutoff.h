@@ -1,0 +1,33 @@
+// What max_depth and min_reflectivity may cost (adaptive depth): each pixel's reflection chain
+// stops at most once, and the ray not cast would have added its path weight times the radiance
+// it sees, which the scene bounds. So a render carries its own error bound against the
+// untruncated image, pixel by pixel, without casting a single extra ray.
+#pragma once
+
+#include "trace/precision.h"
+#include "trace/scene.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace glint {
+
+// The most any ray can see, per channel, with reflections followed forever: every hit adds at
+// most L = ambient_m·ambient + Σ_lights colour·(diffuse_m + specular_m) (n·l ≤ 1, the specular
+// lobe ≤ 1), or the background; each bounce multiplies by at most r = the largest reflectivity,
+// so the radiance is at most L_max / (1 − r). Infinite when r = 1 (and anything is lit).
+glm::dvec3 ray_radiance_bound(const Scene& scene);
+
+struct CutoffBound {
+    // Per pixel, in 1/255 steps: how far the pixel may be below its untruncated value. The
+    // omitted term is never negative, so the truncated pixel is never above it, and a channel
+    // already at 255 cannot rise: min(255 − value, ceil(255 · weight · bound)) over channels.
+    std::vector<std::uint8_t> per_pixel;
+    int max = 0;                       // largest per_pixel
+    std::uint64_t pixels_over_one = 0; // pixels whose bound exceeds 1/255
+    double largest_omitted_weight = 0; // path weight of the heaviest ray not cast
+};
+
+CutoffBound cutoff_bound(const Scene& scene, const RenderResult& render);
+
+} // namespace glint
