@@ -20,6 +20,7 @@ struct Command {
 
 Command add_render_command(CLI::App& app);
 Command add_compare_command(CLI::App& app);
+Command add_tradeoff_command(CLI::App& app);
 Command add_bench_command(CLI::App& app);
 Command add_info_command(CLI::App& app);
 

@@ -41,17 +41,8 @@ fs::path SceneOptions::scene_path() const {
 
 Scene SceneOptions::load() const {
     Scene loaded = load_scene(scene_path());
-    if (!size.empty()) {
-        static const std::regex size_pattern(R"((\d{1,5})x(\d{1,5}))");
-        std::smatch m;
-        if (!std::regex_match(size, m, size_pattern))
-            throw UsageError("--size " + size + ": expected WIDTHxHEIGHT, e.g. 800x600");
-        const int w = std::stoi(m[1]), h = std::stoi(m[2]);
-        if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide)
-            throw UsageError("--size " + size + ": each side must be 1 to " +
-                             std::to_string(kMaxImageSide));
-        loaded.camera.width = w, loaded.camera.height = h;
-    }
+    if (!size.empty())
+        std::tie(loaded.camera.width, loaded.camera.height) = parse_size(size, "--size");
     if (max_depth_option->count()) loaded.render.max_depth = max_depth;
     if (min_reflectivity_option->count())
         loaded.render.min_reflectivity = static_cast<float>(min_reflectivity);
@@ -99,6 +90,18 @@ std::string FrameOptions::describe() const {
     if (mode == "ray") return "ray";
     return "hybrid (" + gl + ", " + raster +
            (raster == "mesh" ? " tess " + std::to_string(tessellation) : "") + ", " + resolve + ")";
+}
+
+std::pair<int, int> parse_size(const std::string& text, const std::string& flag) {
+    static const std::regex size_pattern(R"((\d{1,5})x(\d{1,5}))");
+    std::smatch m;
+    if (!std::regex_match(text, m, size_pattern))
+        throw UsageError(flag + " " + text + ": expected WIDTHxHEIGHT, e.g. 800x600");
+    const int w = std::stoi(m[1]), h = std::stoi(m[2]);
+    if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide)
+        throw UsageError(flag + " " + text + ": each side must be 1 to " +
+                         std::to_string(kMaxImageSide));
+    return {w, h};
 }
 
 void check_output(const fs::path& path, const std::string& flag) {

@@ -51,6 +51,9 @@ struct FrameOptions {
     std::string describe() const;
 };
 
+// WIDTHxHEIGHT, each side 1 to kMaxImageSide; UsageError naming `flag` otherwise.
+std::pair<int, int> parse_size(const std::string& text, const std::string& flag);
+
 // An output file must be creatable: its directory exists and takes a new file (a probe file is
 // made and removed), and the path is not itself a directory. UsageError otherwise.
 void check_output(const std::filesystem::path& path, const std::string& flag);

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 #include <sys/wait.h>
@@ -70,6 +71,54 @@ TEST(Cli, RenderWritesThePngAndReportsPathTimeAndRayCounts) {
     EXPECT_GT(stats["rays"]["reflection"], 0);
     EXPECT_GT(stats["seconds"]["total"], 0.0);
     EXPECT_TRUE(r.err.empty()) << "no progress output when stderr is not a terminal: " << r.err;
+}
+
+// Fields of one CSV line (no field of glint's CSV holds a comma).
+std::vector<std::string> fields(const std::string& line) {
+    std::vector<std::string> out(1);
+    for (const char c : line) {
+        if (c == ',')
+            out.emplace_back();
+        else
+            out.back().push_back(c);
+    }
+    return out;
+}
+
+TEST(Cli, TradeoffWritesTheCsvAPlotPerSceneAndTheSummary) {
+    const fs::path dir = fresh_dir();
+    const Outcome r = glint(dir, "tradeoff '" GLINT_SOURCE_DIR "/scenes/default.json' --size "
+                                 "40x30 --repeat 1 -o sweep");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    std::istringstream csv(slurp(dir / "sweep" / "tradeoff.csv"));
+    std::string line;
+    std::getline(csv, line);
+    const std::vector<std::string> header = fields(line);
+    const auto column = [&](const std::string& name) {
+        return std::find(header.begin(), header.end(), name) - header.begin();
+    };
+    int rows = 0, on_front = 0, bounds_checked = 0;
+    while (std::getline(csv, line)) {
+        const std::vector<std::string> row = fields(line);
+        ASSERT_EQ(row.size(), header.size()) << line;
+        ++rows;
+        on_front += row[column("pareto")] == "yes";
+        EXPECT_NE(row[column("cutoff_bound_held")], "no") << line;
+        bounds_checked += row[column("cutoff_bound_held")] == "yes";
+        EXPECT_EQ(std::stoul(row[column("rays_primary")]), row[column("divisor")] == "1"   ? 1200u
+                                                           : row[column("divisor")] == "2" ? 300u
+                                                                                           : 70u)
+            << line;
+    }
+    EXPECT_GE(rows, 30); // every knob's values, a setting reached by two knobs once
+    EXPECT_GE(on_front, 1);
+    EXPECT_GE(bounds_checked, 10); // every float ray-mode run at full size
+    EXPECT_GT(fs::file_size(dir / "sweep" / "default.svg"), 0u);
+    EXPECT_EQ(read_png(dir / "sweep" / "default.png").width, 1100);
+    const std::string summary = slurp(dir / "sweep" / "summary.md");
+    EXPECT_NE(summary.find("## default (40×30, 10 objects)"), std::string::npos) << summary;
+    EXPECT_NE(summary.find("| PSNR ≥ 40 dB |"), std::string::npos) << summary;
+    EXPECT_NE(summary.find("](./default.svg)"), std::string::npos) << summary;
 }
 
 TEST(Cli, WithoutArgumentsRendersTheDefaultSceneIntoOut) {
@@ -141,6 +190,9 @@ INSTANTIATE_TEST_SUITE_P(EveryClass, BadRunTest, ::testing::Values(
     BadRun{"tessellation below the minimum", "", "render --tess 2", "--tess"},
     BadRun{"unknown resolve", "", "render --resolve maybe", "--resolve"},
     BadRun{"compare: bad scene", R"({"objects": 1})", "compare scene.json", "scene.json: /objects: expected an array"},
+    BadRun{"tradeoff: bad scene", R"({"objects": 1})", "tradeoff scene.json", "scene.json: /objects: expected an array"},
+    BadRun{"tradeoff: bad size", "", "tradeoff --size 0x5", "--size 0x5: each side must be 1 to 16384"},
+    BadRun{"tradeoff: no repeat", "", "tradeoff --repeat 0", "--repeat"},
     BadRun{"stats into a missing directory", "", "render --stats no/dir/s.json", "--stats no/dir/s.json: directory no/dir does not exist"}
 ), [](const auto& info) { return testing::test_name(info.param.what); });
 // clang-format on

@@ -1,0 +1,547 @@
+// `glint tradeoff`: sweeps the knobs that trade speed for accuracy, one at a time from the
+// default setting, timing each run side by side in one process and comparing its image with the
+// exact one: ray traced in double precision, reflections followed as deep as glint allows with
+// no weight cut-off. Writes a CSV (a row per run), a plot per scene of time against error with
+// the Pareto front (gnuplot, SVG and PNG) and a markdown summary (docs/TRADEOFF.md).
+#include "app/options.h"
+
+#include "trace/cutoff.h"
+#include "trace/image_metrics.h"
+#include "trace/scene_loader.h"
+
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <functional>
+#include <map>
+#include <memory>
+#include <sstream>
+
+namespace glint {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct TradeoffArgs {
+    std::vector<std::string> scenes;
+    std::string output = "out/tradeoff";
+    std::string summary; // default: <output>/summary.md
+    std::string size;
+    std::string gl = "osmesa";
+    int repeat = 3;
+    int threads = 0;
+
+    fs::path summary_path() const {
+        return summary.empty() ? fs::path(output) / "summary.md" : fs::path(summary);
+    }
+};
+
+// One point of the sweep: everything that may differ from the default setting.
+struct Setting {
+    Precision precision = Precision::f32;
+    Mode mode = Mode::hybrid;
+    RasterMode raster = RasterMode::mesh;
+    int tessellation = kDefaultTessellation;
+    Resolve resolve = Resolve::exact;
+    int max_depth = 0;
+    float min_reflectivity = 0;
+    std::optional<AccelKind> accel; // nothing: list below kListBelow objects, else bvh
+    int divisor = 1;                // rendered at 1/divisor of the size, then enlarged
+
+    // A short name for tables and plots, e.g. "hybrid mesh tess 8 trust".
+    std::string label(const Scene& scene) const {
+        std::string s = mode == Mode::ray ? "ray" : "hybrid";
+        if (precision == Precision::f64) s += " double";
+        if (mode == Mode::hybrid) {
+            s += raster == RasterMode::mesh ? " mesh tess " + std::to_string(tessellation)
+                                            : " proxy";
+            if (resolve == Resolve::trust) s += " trust";
+        }
+        if (max_depth != scene.render.max_depth) s += " depth " + std::to_string(max_depth);
+        if (min_reflectivity != scene.render.min_reflectivity) {
+            char text[32];
+            std::snprintf(text, sizeof text, " cut-off %g", static_cast<double>(min_reflectivity));
+            s += text;
+        }
+        if (accel) s += " " + std::string(accel_name(*accel));
+        if (divisor > 1) s += " 1/" + std::to_string(divisor) + " size";
+        return s;
+    }
+};
+
+// The sweep for one scene: each knob varied alone from the default setting (hybrid, mesh,
+// tessellation 32, exact, the scene's depth and cut-off, automatic structure, full size).
+// The trace-only knobs (depth, cut-off, structure, size, precision) are swept in ray mode so
+// that nothing else changes the image. Keyed by label: a setting reached by two knobs runs once.
+std::vector<std::pair<std::string, Setting>> sweep(const Scene& scene) {
+    Setting hybrid;
+    hybrid.max_depth = scene.render.max_depth;
+    hybrid.min_reflectivity = scene.render.min_reflectivity;
+    Setting ray = hybrid;
+    ray.mode = Mode::ray;
+    std::vector<std::pair<std::string, Setting>> out;
+    const auto add = [&](const char* knob, Setting s) { out.emplace_back(knob, s); };
+    add("mode", hybrid);
+    add("mode", ray);
+    for (const Resolve resolve : {Resolve::exact, Resolve::trust}) {
+        Setting s = hybrid;
+        s.resolve = resolve;
+        for (const int tess : {4, 8, 16, 32, 64}) {
+            s.tessellation = tess;
+            add(resolve == Resolve::exact ? "tessellation" : "resolve", s);
+        }
+        s.raster = RasterMode::proxy;
+        s.tessellation = kDefaultTessellation;
+        add("raster", s);
+    }
+    for (int depth = 0; depth <= 8; ++depth) {
+        Setting s = ray;
+        s.max_depth = depth;
+        add("max_depth", s);
+    }
+    for (const float cutoff : {0.0f, 0.001f, 0.01f, 0.03f, 0.1f}) {
+        Setting s = ray;
+        s.min_reflectivity = cutoff;
+        add("min_reflectivity", s);
+    }
+    for (const AccelKind kind :
+         {AccelKind::list, AccelKind::bvh, AccelKind::spheres, AccelKind::grid, AccelKind::kd}) {
+        Setting s = ray;
+        s.accel = kind;
+        add("accel", s);
+    }
+    for (const int divisor : {2, 4}) {
+        Setting s = ray;
+        s.divisor = divisor;
+        add("resolution", s);
+    }
+    Setting precise = ray;
+    precise.precision = Precision::f64;
+    add("precision", precise);
+    // The exact image's own setting in float: what double precision alone adds.
+    Setting untruncated = ray;
+    untruncated.max_depth = kMaxDepth;
+    untruncated.min_reflectivity = 0;
+    add("precision", untruncated);
+    return out;
+}
+
+struct Run {
+    std::string knobs; // every sweep that reached this setting, '+'-joined
+    std::string label;
+    Setting setting;
+    PhaseTimes times;
+    double prepare = 0;
+    Image image; // at full size
+    std::vector<std::uint32_t> ids;
+    RayCounts rays;
+    CutoffBound bound;
+    std::optional<bool> bound_held; // float ray runs at full size: checked pixel by pixel
+    ImageDifference diff{};
+    std::optional<double> agreement; // against the reference's ids; not for enlarged runs
+
+    // Per frame: everything but the one-time GL set-up (context, shader compilation).
+    double frame_seconds() const { return prepare + times.total() - times.context - times.compile; }
+    double total_seconds() const { return prepare + times.total(); }
+};
+
+// Pixel replication up to width × height (nearest neighbour: what a preview shows).
+Image enlarge(const Image& small, int width, int height) {
+    if (small.width == width && small.height == height) return small;
+    Image out(width, height);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const std::uint8_t* p = small.pixel(x * small.width / width, y * small.height / height);
+            std::copy(p, p + 3, out.pixel(x, y));
+        }
+    return out;
+}
+
+// One render of `scene` with `s`; the images are deterministic, so only times differ per repeat.
+Run render_once(const Scene& scene, const Setting& s, const TradeoffArgs& args) {
+    Scene copy = scene;
+    copy.render = {s.max_depth, s.min_reflectivity};
+    copy.camera.width = std::max(1, scene.camera.width / s.divisor);
+    copy.camera.height = std::max(1, scene.camera.height / s.divisor);
+    Run run;
+    run.setting = s;
+    const TileProgress progress{args.threads, nullptr};
+    if (s.precision == Precision::f64) {
+        RayFrame frame = render_ray_frame(Precision::f64, copy, s.accel, progress);
+        run.prepare = frame.prepare_seconds;
+        run.times.primary = frame.primary_seconds;
+        run.times.shading = frame.shading_seconds;
+        run.ids = std::move(frame.ids);
+        run.bound = cutoff_bound(copy, frame.result);
+        run.rays = frame.result.rays;
+        run.image = std::move(frame.result.image);
+    } else {
+        const auto start = std::chrono::steady_clock::now();
+        const World world(copy, s.accel);
+        run.prepare = seconds_since(start);
+        const FrameSettings settings{
+            s.mode,    args.gl == "egl" ? GlBackend::egl : GlBackend::osmesa,
+            s.raster,  s.tessellation,
+            s.resolve, args.threads};
+        Frame frame = render_frame(world, settings);
+        run.times = frame.times;
+        run.ids = object_ids(frame.primary);
+        run.bound = cutoff_bound(copy, frame.result);
+        run.rays = frame.result.rays;
+        run.image = std::move(frame.result.image);
+    }
+    run.image = enlarge(run.image, scene.camera.width, scene.camera.height);
+    return run;
+}
+
+// `repeat` renders side by side; keeps the one with the median frame time.
+Run measure(const Scene& scene, const Setting& s, const TradeoffArgs& args) {
+    std::vector<Run> runs;
+    for (int i = 0; i < args.repeat; ++i) runs.push_back(render_once(scene, s, args));
+    std::sort(runs.begin(), runs.end(),
+              [](const Run& a, const Run& b) { return a.frame_seconds() < b.frame_seconds(); });
+    return std::move(runs[runs.size() / 2]);
+}
+
+// Whether every pixel of a truncated float ray render lies within its cut-off bound below the
+// untruncated float render (trace/cutoff.h; tests/precision_test.cpp checks the same).
+bool bound_holds(const Run& run, const Image& untruncated) {
+    for (std::size_t i = 0; i < run.bound.per_pixel.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            const int below = untruncated.rgb[3 * i + c] - run.image.rgb[3 * i + c];
+            if (below < 0 || below > run.bound.per_pixel[i]) return false;
+        }
+    return true;
+}
+
+std::string format(const char* pattern, double value) {
+    char text[64];
+    std::snprintf(text, sizeof text, pattern, value);
+    return text;
+}
+
+std::string psnr_text(double psnr) {
+    return std::isinf(psnr) ? "exact" : format("%.1f", psnr);
+}
+
+// Indices of the runs on the Pareto front of (frame time, PSNR): none is both faster and closer.
+std::vector<std::size_t> pareto_front(const std::vector<Run>& runs) {
+    std::vector<std::size_t> order(runs.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return runs[a].frame_seconds() < runs[b].frame_seconds();
+    });
+    std::vector<std::size_t> front;
+    double best = -1;
+    for (const std::size_t i : order)
+        if (runs[i].diff.psnr_db > best) front.push_back(i), best = runs[i].diff.psnr_db;
+    return front;
+}
+
+// Runs gnuplot on `script`; throws when it fails.
+void gnuplot(const std::string& script) {
+    FILE* pipe = popen("gnuplot", "w");
+    if (!pipe) throw std::runtime_error("cannot run gnuplot");
+    std::fwrite(script.data(), 1, script.size(), pipe);
+    if (pclose(pipe) != 0) throw std::runtime_error("gnuplot failed on the plot script");
+}
+
+// Time against PSNR, a colour per knob, the Pareto front a line with its settings named; runs
+// identical to the exact image are drawn on a dashed line above the largest finite PSNR.
+void plot(const std::string& name, const std::vector<Run>& runs, const fs::path& dir) {
+    double top = 0;
+    bool any_exact = false;
+    for (const Run& r : runs) {
+        if (std::isinf(r.diff.psnr_db))
+            any_exact = true;
+        else
+            top = std::max(top, r.diff.psnr_db);
+    }
+    top += 10;
+    const auto point = [&](const Run& r) {
+        return std::to_string(r.frame_seconds()) + ' ' +
+               std::to_string(std::isinf(r.diff.psnr_db) ? top : r.diff.psnr_db) + " \"" + r.label +
+               "\"\n";
+    };
+    std::vector<std::string> knobs; // in sweep order, by the first knob that reached a run
+    std::map<std::string, std::string> points;
+    for (const Run& r : runs) {
+        const std::string knob = r.knobs.substr(0, r.knobs.find('+'));
+        if (!points.count(knob)) knobs.push_back(knob);
+        points[knob] += point(r);
+    }
+    std::ostringstream script, draw;
+    for (std::size_t k = 0; k < knobs.size(); ++k)
+        script << "$knob" << k << " << EOD\n" << points[knobs[k]] << "EOD\n";
+    script << "$front << EOD\n";
+    for (const std::size_t i : pareto_front(runs)) script << point(runs[i]);
+    script << "EOD\nset logscale x\nset grid\nset key outside right top\n"
+           << "set xlabel 'frame time (s, log scale; GL context and shader compilation excluded)'\n"
+           << "set ylabel 'PSNR against the exact image (dB)'\n"
+           << "set title '" << name << ": time against error"
+           << (any_exact ? " (dashed line: identical to the exact image)" : "") << "'\n";
+    if (any_exact)
+        script << "set arrow from graph 0, first " << top << " to graph 1, first " << top
+               << " nohead dashtype 2\n";
+    draw << "plot ";
+    for (std::size_t k = 0; k < knobs.size(); ++k)
+        draw << "$knob" << k << " using 1:2 with points pointtype 7 pointsize 1 title '" << knobs[k]
+             << "', ";
+    draw << "$front using 1:2 with steps linewidth 2 linecolor 'gray40' title 'Pareto front', "
+            "$front using 1:2:3 with labels font ',8' offset 0.5,0.5 left notitle\n";
+    const std::string base = (dir / name).string();
+    gnuplot(script.str() +
+            "set terminal svg size 1100,650 dynamic noenhanced font 'sans,11'\nset output '" +
+            base + ".svg'\n" + draw.str());
+    gnuplot(script.str() +
+            "set terminal pngcairo size 1100,650 noenhanced font 'sans,10'\nset output '" + base +
+            ".png'\n" + draw.str());
+}
+
+// The fastest run within an error budget, if any.
+const Run* fastest(const std::vector<Run>& runs, const std::function<bool(const Run&)>& within) {
+    const Run* best = nullptr;
+    for (const Run& r : runs)
+        if (within(r) && (!best || r.frame_seconds() < best->frame_seconds())) best = &r;
+    return best;
+}
+
+struct SceneResult {
+    std::string name;
+    fs::path path;
+    Scene scene;
+    std::vector<Run> runs;
+    CutoffBound reference_bound;
+    double reference_seconds = 0;
+};
+
+void write_csv(const std::vector<SceneResult>& results, const fs::path& path) {
+    std::ostringstream csv;
+    csv << "scene,width,height,knobs,label,precision,mode,raster,tessellation,resolve,max_depth,"
+           "min_reflectivity,accel,divisor,seconds_frame,seconds_total,seconds_prepare,"
+           "seconds_context,seconds_compile,seconds_upload,seconds_raster,seconds_primary,"
+           "seconds_shading,psnr_db,max_abs_error_255,fraction_over_1_255,id_agreement,"
+           "rays_primary,rays_shadow,rays_reflection,cutoff_bound_255,cutoff_bound_held,pareto\n";
+    for (const SceneResult& sr : results) {
+        const std::vector<std::size_t> front = pareto_front(sr.runs);
+        for (std::size_t i = 0; i < sr.runs.size(); ++i) {
+            const Run& r = sr.runs[i];
+            const Setting& s = r.setting;
+            const bool hybrid = s.mode == Mode::hybrid;
+            csv << sr.name << ',' << sr.scene.camera.width << ',' << sr.scene.camera.height << ','
+                << r.knobs << ",\"" << r.label << "\","
+                << (s.precision == Precision::f64 ? "double" : "float") << ','
+                << (hybrid ? "hybrid" : "ray") << ',' << (hybrid ? raster_mode_name(s.raster) : "")
+                << ','
+                << (hybrid && s.raster == RasterMode::mesh ? std::to_string(s.tessellation) : "")
+                << ',' << (hybrid ? (s.resolve == Resolve::exact ? "exact" : "trust") : "") << ','
+                << s.max_depth << ',' << s.min_reflectivity << ','
+                << (s.accel ? accel_name(*s.accel) : "auto") << ',' << s.divisor << ','
+                << r.frame_seconds() << ',' << r.total_seconds() << ',' << r.prepare << ','
+                << r.times.context << ',' << r.times.compile << ',' << r.times.upload << ','
+                << r.times.raster << ',' << r.times.primary << ',' << r.times.shading << ','
+                << (std::isinf(r.diff.psnr_db) ? "inf" : format("%.3f", r.diff.psnr_db)) << ','
+                << r.diff.max_abs_error << ',' << r.diff.fraction_over_one << ','
+                << (r.agreement ? format("%.6f", *r.agreement) : "") << ',' << r.rays.primary << ','
+                << r.rays.shadow << ',' << r.rays.reflection << ',' << r.bound.max << ','
+                << (r.bound_held ? (*r.bound_held ? "yes" : "no") : "") << ','
+                << (std::find(front.begin(), front.end(), i) != front.end() ? "yes" : "") << '\n';
+        }
+    }
+    write_file_atomically(path, csv.str());
+}
+
+std::string markdown(const std::vector<SceneResult>& results, const TradeoffArgs& args,
+                     const fs::path& plots, const std::string& gl_renderer, double seconds) {
+    std::ostringstream md;
+    const std::time_t now = std::time(nullptr);
+    char date[32];
+    std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
+    const int threads = args.threads > 0 ? args.threads : tbb::this_task_arena::max_concurrency();
+    md << "# Speed against accuracy\n\n"
+       << "Generated by `glint tradeoff` on " << date << " (" << threads
+       << " threads, GL: " << gl_renderer << ", median of " << args.repeat << " runs each, "
+       << format("%.0f", seconds) << " s in all). Regenerate the shipped scenes' results with\n\n"
+       << "```sh\n./glint tradeoff -o docs/tradeoff --summary docs/TRADEOFF.md\n```\n\n"
+       << "**Exact image**: ray traced in double precision (`glint::f64`), reflections followed "
+          "to depth "
+       << kMaxDepth
+       << " with no weight cut-off. **Error**: PSNR over every 8-bit channel (identical images: "
+          "*exact*), largest channel difference, pixels off by more than 1/255. **Frame time**: "
+          "everything but the one-time GL set-up (context and shader compilation, ~0.2 s on "
+          "llvmpipe, reported in the CSV): preparing the world (transforms, acceleration "
+          "structure), tessellation upload, item buffer, primary visibility, shading. Each knob "
+          "is varied alone from the default setting (hybrid, mesh, tessellation 32, exact "
+          "resolve, the scene's depth and cut-off, automatic structure); the trace-only knobs in "
+          "ray mode. Smaller sizes are enlarged by pixel replication before comparing. "
+          "**Cut-off bound**: what the reflection cut-off may cost each pixel "
+          "(`trace/cutoff.h`), checked on every pixel against the untruncated float render "
+          "(*held*). All runs: [tradeoff.csv]("
+       << (plots / "tradeoff.csv").generic_string() << ").\n\n";
+    for (const SceneResult& sr : results) {
+        md << "## " << sr.name << " (" << sr.scene.camera.width << "×" << sr.scene.camera.height
+           << ", " << sr.scene.objects.size() << " objects)\n\n"
+           << "![" << sr.name << ": frame time against PSNR]("
+           << (plots / (sr.name + ".svg")).generic_string() << ")\n\n"
+           << "The exact image took " << format("%.3f", sr.reference_seconds)
+           << " s; its own cut-off bound is " << sr.reference_bound.max << "/255.\n\n"
+           << "| error budget | fastest setting | frame time (s) | PSNR (dB) | max error |\n"
+           << "|---|---|---:|---:|---:|\n";
+        const std::vector<std::pair<std::string, std::function<bool(const Run&)>>> budgets = {
+            {"PSNR ≥ 40 dB", [](const Run& r) { return r.diff.psnr_db >= 40; }},
+            {"PSNR ≥ 50 dB", [](const Run& r) { return r.diff.psnr_db >= 50; }},
+            {"every pixel within 1/255", [](const Run& r) { return r.diff.max_abs_error <= 1; }},
+            {"exact", [](const Run& r) { return r.diff.max_abs_error == 0; }}};
+        for (const auto& [budget, within] : budgets) {
+            const Run* r = fastest(sr.runs, within);
+            if (!r)
+                md << "| " << budget << " | none of the runs | | | |\n";
+            else
+                md << "| " << budget << " | " << r->label << " | "
+                   << format("%.4f", r->frame_seconds()) << " | " << psnr_text(r->diff.psnr_db)
+                   << " | " << r->diff.max_abs_error << "/255 |\n";
+        }
+        md << "\n<details><summary>Every run</summary>\n\n"
+           << "| knob | setting | frame time (s) | PSNR (dB) | max error | off > 1/255 | id "
+              "agreement | reflection rays | cut-off bound |\n"
+           << "|---|---|---:|---:|---:|---:|---:|---:|---|\n";
+        for (const Run& r : sr.runs)
+            md << "| " << r.knobs << " | " << r.label << " | " << format("%.4f", r.frame_seconds())
+               << " | " << psnr_text(r.diff.psnr_db) << " | " << r.diff.max_abs_error << " | "
+               << format("%.3f%%", 100 * r.diff.fraction_over_one) << " | "
+               << (r.agreement ? format("%.4f", *r.agreement) : "–") << " | " << r.rays.reflection
+               << " | " << r.bound.max << "/255"
+               << (r.bound_held ? (*r.bound_held ? ", held" : ", **violated**") : "") << " |\n";
+        md << "\n</details>\n\n";
+    }
+    return md.str();
+}
+
+std::vector<fs::path> scene_paths(const TradeoffArgs& args) {
+    std::vector<fs::path> paths(args.scenes.begin(), args.scenes.end());
+    if (paths.empty()) {
+        const fs::path dir = fs::exists("scenes/default.json")
+                                 ? fs::path("scenes")
+                                 : fs::path(GLINT_SOURCE_DIR) / "scenes";
+        for (const fs::directory_entry& entry : fs::directory_iterator(dir))
+            if (entry.path().extension() == ".json") paths.push_back(entry.path());
+        std::sort(paths.begin(), paths.end());
+    }
+    return paths;
+}
+
+// Every check on the input before any rendering: scenes load, size and outputs are usable.
+std::vector<SceneResult> prepare(const TradeoffArgs& args) {
+    const fs::path out = args.output;
+    std::error_code ec;
+    if (fs::exists(out, ec) && !fs::is_directory(out, ec))
+        throw UsageError("-o " + out.string() + ": is not a directory");
+    check_output(fs::is_directory(out, ec) ? out / "tradeoff.csv" : out, "-o");
+    if (!args.summary.empty()) check_output(args.summary, "--summary"); // else inside -o
+    std::vector<SceneResult> results;
+    for (const fs::path& path : scene_paths(args)) {
+        SceneResult sr{path.stem().string(), path, load_scene(path), {}, {}, 0};
+        if (!args.size.empty())
+            std::tie(sr.scene.camera.width, sr.scene.camera.height) =
+                parse_size(args.size, "--size");
+        // The exact image, its float twin and the run being measured are alive together.
+        check_frame_memory(sr.scene.camera, Mode::hybrid, 3);
+        results.push_back(std::move(sr));
+    }
+    return results;
+}
+
+int run_tradeoff(const TradeoffArgs& args) {
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<SceneResult> results = prepare(args);
+    if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
+        throw std::runtime_error("glint tradeoff plots with gnuplot, which is not installed "
+                                 "(apt install gnuplot-nox; ./glint tradeoff installs it)");
+    const fs::path out = args.output;
+    fs::create_directories(out);
+    const fs::path summary = args.summary_path();
+    const fs::path plots = fs::relative(fs::absolute(out), fs::absolute(summary).parent_path());
+    std::string gl_renderer = "none";
+
+    for (SceneResult& sr : results) {
+        const Scene& scene = sr.scene;
+        Scene deep = scene;
+        deep.render = {kMaxDepth, 0.0f};
+        const auto reference_start = std::chrono::steady_clock::now();
+        const RayFrame reference =
+            render_ray_frame(Precision::f64, deep, std::nullopt, {args.threads, nullptr});
+        sr.reference_seconds = seconds_since(reference_start);
+        sr.reference_bound = cutoff_bound(deep, reference.result);
+        const Image untruncated_float =
+            render_ray_frame(Precision::f32, deep, std::nullopt, {args.threads, nullptr})
+                .result.image;
+
+        const auto settings = sweep(scene);
+        std::map<std::string, std::size_t> seen;
+        std::printf("%s (%dx%d): %zu settings\n", sr.name.c_str(), scene.camera.width,
+                    scene.camera.height, settings.size());
+        for (const auto& [knob, setting] : settings) {
+            const std::string label = setting.label(scene);
+            if (const auto it = seen.find(label); it != seen.end()) {
+                sr.runs[it->second].knobs += "+" + knob;
+                continue;
+            }
+            Run run = measure(scene, setting, args);
+            run.knobs = knob;
+            run.label = label;
+            run.diff = compare_images(reference.result.image, run.image);
+            if (setting.divisor == 1) run.agreement = id_agreement(reference.ids, run.ids);
+            if (setting.precision == Precision::f32 && setting.mode == Mode::ray &&
+                setting.divisor == 1)
+                run.bound_held = bound_holds(run, untruncated_float);
+            std::printf("  %-36s %8.4f s  PSNR %6s dB  max error %3d/255\n", label.c_str(),
+                        run.frame_seconds(), psnr_text(run.diff.psnr_db).c_str(),
+                        run.diff.max_abs_error);
+            std::fflush(stdout);
+            seen[label] = sr.runs.size();
+            sr.runs.push_back(std::move(run));
+        }
+        plot(sr.name, sr.runs, out);
+    }
+    if (std::any_of(results.begin(), results.end(),
+                    [](const SceneResult& sr) { return !sr.scene.objects.empty(); })) {
+        // One more context only to name the renderer in the summary.
+        gl_renderer =
+            make_context(args.gl == "egl" ? GlBackend::egl : GlBackend::osmesa)->renderer();
+    }
+    write_csv(results, out / "tradeoff.csv");
+    write_file_atomically(summary,
+                          markdown(results, args, plots, gl_renderer, seconds_since(start)));
+    std::printf("wrote %s, %s and a plot per scene (SVG, PNG) in %s, in %.0f s\n",
+                (out / "tradeoff.csv").c_str(), summary.c_str(), out.c_str(), seconds_since(start));
+    return 0;
+}
+
+} // namespace
+
+Command add_tradeoff_command(CLI::App& app) {
+    auto args = std::make_shared<TradeoffArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "tradeoff", "Sweep the speed/accuracy knobs against the exact image: CSV, plots, summary");
+    cmd->add_option("scenes", args->scenes, "Scene files (JSON); default every scene in scenes/");
+    cmd->add_option("-o,--output", args->output, "Directory for tradeoff.csv and the plots")
+        ->capture_default_str();
+    cmd->add_option("--summary", args->summary, "Markdown summary; default OUTPUT/summary.md");
+    cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT for every scene");
+    cmd->add_option("--repeat", args->repeat, "Renders per setting; the median time is kept")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 100));
+    cmd->add_option("--gl", args->gl, "Headless GL for the item buffer: osmesa or egl")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"osmesa", "egl"}));
+    cmd->add_option("--threads", args->threads, "Worker threads; default all cores")
+        ->check(CLI::Range(1, 1024));
+    return {cmd, [args] { prepare(*args); },
+            [args] { return guarded([&] { return run_tradeoff(*args); }); }};
+}
+
+} // namespace glint
