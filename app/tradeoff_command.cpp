@@ -143,6 +143,7 @@ struct Run {
     std::optional<bool> bound_held; // float ray runs at full size: checked pixel by pixel
     ImageDifference diff{};
     std::optional<double> agreement; // against the reference's ids; not for enlarged runs
+    std::string gl_renderer;         // hybrid runs
 
     // Per frame: everything but the one-time GL set-up (context, shader compilation).
     double frame_seconds() const { return prepare + times.total() - times.context - times.compile; }
@@ -189,6 +190,7 @@ Run render_once(const Scene& scene, const Setting& s, const TradeoffArgs& args) 
             s.resolve, args.threads};
         Frame frame = render_frame(world, settings);
         run.times = frame.times;
+        run.gl_renderer = frame.gl_renderer;
         run.ids = object_ids(frame.primary);
         run.bound = cutoff_bound(copy, frame.result);
         run.rays = frame.result.rays;
@@ -502,16 +504,11 @@ int run_tradeoff(const TradeoffArgs& args) {
                         run.frame_seconds(), psnr_text(run.diff.psnr_db).c_str(),
                         run.diff.max_abs_error);
             std::fflush(stdout);
+            if (!run.gl_renderer.empty()) gl_renderer = run.gl_renderer;
             seen[label] = sr.runs.size();
             sr.runs.push_back(std::move(run));
         }
         plot(sr.name, sr.runs, out);
-    }
-    if (std::any_of(results.begin(), results.end(),
-                    [](const SceneResult& sr) { return !sr.scene.objects.empty(); })) {
-        // One more context only to name the renderer in the summary.
-        gl_renderer =
-            make_context(args.gl == "egl" ? GlBackend::egl : GlBackend::osmesa)->renderer();
     }
     write_csv(results, out / "tradeoff.csv");
     write_file_atomically(summary,

@@ -64,7 +64,8 @@ TEST_P(ShippedScene, TheReflectionCutOffBoundHoldsOnEveryPixel) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene,
                          ::testing::Values("default", "mirrors", "primitives", "shadows",
-                                           "transforms"));
+                                           "transforms"),
+                         [](const auto& info) { return info.param; });
 
 // Two facing mirrors of reflectivity 0.9: what is cut off is at most 0.9^(depth+1) of what a
 // ray can see, so the bound shrinks geometrically with depth, and once it is below 1/255 the
