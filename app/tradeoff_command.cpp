@@ -40,13 +40,11 @@ struct TradeoffArgs {
     }
 };
 
-// One point of the sweep: everything that may differ from the default setting.
+// One point of the sweep: everything that may differ from the default setting. The frame's
+// gl and threads come from the command line.
 struct Setting {
     Precision precision = Precision::f32;
-    Mode mode = Mode::hybrid;
-    RasterMode raster = RasterMode::mesh;
-    int tessellation = kDefaultTessellation;
-    Resolve resolve = Resolve::exact;
+    FrameSettings frame;
     int max_depth = 0;
     float min_reflectivity = 0;
     std::optional<AccelKind> accel; // nothing: list below kListBelow objects, else bvh
@@ -54,12 +52,13 @@ struct Setting {
 
     // A short name for tables and plots, e.g. "hybrid mesh tess 8 trust".
     std::string label(const Scene& scene) const {
-        std::string s = mode == Mode::ray ? "ray" : "hybrid";
+        const FrameSettings& f = frame;
+        std::string s = f.mode == Mode::ray ? "ray" : "hybrid";
         if (precision == Precision::f64) s += " double";
-        if (mode == Mode::hybrid) {
-            s += raster == RasterMode::mesh ? " mesh tess " + std::to_string(tessellation)
-                                            : " proxy";
-            if (resolve == Resolve::trust) s += " trust";
+        if (f.mode == Mode::hybrid) {
+            s += f.raster == RasterMode::mesh ? " mesh tess " + std::to_string(f.tessellation)
+                                              : " proxy";
+            if (f.resolve == Resolve::trust) s += " trust";
         }
         if (max_depth != scene.render.max_depth) s += " depth " + std::to_string(max_depth);
         if (min_reflectivity != scene.render.min_reflectivity) {
@@ -82,20 +81,20 @@ std::vector<std::pair<std::string, Setting>> sweep(const Scene& scene) {
     hybrid.max_depth = scene.render.max_depth;
     hybrid.min_reflectivity = scene.render.min_reflectivity;
     Setting ray = hybrid;
-    ray.mode = Mode::ray;
+    ray.frame.mode = Mode::ray;
     std::vector<std::pair<std::string, Setting>> out;
     const auto add = [&](const char* knob, Setting s) { out.emplace_back(knob, s); };
     add("mode", hybrid);
     add("mode", ray);
     for (const Resolve resolve : {Resolve::exact, Resolve::trust}) {
         Setting s = hybrid;
-        s.resolve = resolve;
+        s.frame.resolve = resolve;
         for (const int tess : {4, 8, 16, 32, 64}) {
-            s.tessellation = tess;
+            s.frame.tessellation = tess;
             add(resolve == Resolve::exact ? "tessellation" : "resolve", s);
         }
-        s.raster = RasterMode::proxy;
-        s.tessellation = kDefaultTessellation;
+        s.frame.raster = RasterMode::proxy;
+        s.frame.tessellation = kDefaultTessellation;
         add("raster", s);
     }
     for (int depth = 0; depth <= 8; ++depth) {
@@ -184,10 +183,9 @@ Run render_once(const Scene& scene, const Setting& s, const TradeoffArgs& args) 
         const auto start = std::chrono::steady_clock::now();
         const World world(copy, s.accel);
         run.prepare = seconds_since(start);
-        const FrameSettings settings{
-            s.mode,    args.gl == "egl" ? GlBackend::egl : GlBackend::osmesa,
-            s.raster,  s.tessellation,
-            s.resolve, args.threads};
+        FrameSettings settings = s.frame;
+        settings.gl = args.gl == "egl" ? GlBackend::egl : GlBackend::osmesa;
+        settings.threads = args.threads;
         Frame frame = render_frame(world, settings);
         run.times = frame.times;
         run.gl_renderer = frame.gl_renderer;
@@ -333,14 +331,15 @@ void write_csv(const std::vector<SceneResult>& results, const fs::path& path) {
         for (std::size_t i = 0; i < sr.runs.size(); ++i) {
             const Run& r = sr.runs[i];
             const Setting& s = r.setting;
-            const bool hybrid = s.mode == Mode::hybrid;
+            const FrameSettings& f = s.frame;
+            const bool hybrid = f.mode == Mode::hybrid;
             csv << sr.name << ',' << sr.scene.camera.width << ',' << sr.scene.camera.height << ','
                 << r.knobs << ",\"" << r.label << "\","
                 << (s.precision == Precision::f64 ? "double" : "float") << ','
-                << (hybrid ? "hybrid" : "ray") << ',' << (hybrid ? raster_mode_name(s.raster) : "")
+                << (hybrid ? "hybrid" : "ray") << ',' << (hybrid ? raster_mode_name(f.raster) : "")
                 << ','
-                << (hybrid && s.raster == RasterMode::mesh ? std::to_string(s.tessellation) : "")
-                << ',' << (hybrid ? (s.resolve == Resolve::exact ? "exact" : "trust") : "") << ','
+                << (hybrid && f.raster == RasterMode::mesh ? std::to_string(f.tessellation) : "")
+                << ',' << (hybrid ? (f.resolve == Resolve::exact ? "exact" : "trust") : "") << ','
                 << s.max_depth << ',' << s.min_reflectivity << ','
                 << (s.accel ? accel_name(*s.accel) : "auto") << ',' << s.divisor << ','
                 << r.frame_seconds() << ',' << r.total_seconds() << ',' << r.prepare << ','
@@ -497,7 +496,7 @@ int run_tradeoff(const TradeoffArgs& args) {
             run.label = label;
             run.diff = compare_images(reference.result.image, run.image);
             if (setting.divisor == 1) run.agreement = id_agreement(reference.ids, run.ids);
-            if (setting.precision == Precision::f32 && setting.mode == Mode::ray &&
+            if (setting.precision == Precision::f32 && setting.frame.mode == Mode::ray &&
                 setting.divisor == 1)
                 run.bound_held = bound_holds(run, untruncated_float);
             std::printf("  %-36s %8.4f s  PSNR %6s dB  max error %3d/255\n", label.c_str(),
