@@ -207,17 +207,6 @@ Run measure(const Scene& scene, const Setting& s, const TradeoffArgs& args) {
     return std::move(runs[runs.size() / 2]);
 }
 
-// Whether every pixel of a truncated float ray render lies within its cut-off bound below the
-// untruncated float render (trace/cutoff.h; tests/precision_test.cpp checks the same).
-bool bound_holds(const Run& run, const Image& untruncated) {
-    for (std::size_t i = 0; i < run.bound.per_pixel.size(); ++i)
-        for (int c = 0; c < 3; ++c) {
-            const int below = untruncated.rgb[3 * i + c] - run.image.rgb[3 * i + c];
-            if (below < 0 || below > run.bound.per_pixel[i]) return false;
-        }
-    return true;
-}
-
 std::string format(const char* pattern, double value) {
     char text[64];
     std::snprintf(text, sizeof text, pattern, value);
@@ -498,7 +487,7 @@ int run_tradeoff(const TradeoffArgs& args) {
             if (setting.divisor == 1) run.agreement = id_agreement(reference.ids, run.ids);
             if (setting.precision == Precision::f32 && setting.frame.mode == Mode::ray &&
                 setting.divisor == 1)
-                run.bound_held = bound_holds(run, untruncated_float);
+                run.bound_held = cutoff_violations(run.bound, run.image, untruncated_float) == 0;
             std::printf("  %-36s %8.4f s  PSNR %6s dB  max error %3d/255\n", label.c_str(),
                         run.frame_seconds(), psnr_text(run.diff.psnr_db).c_str(),
                         run.diff.max_abs_error);

@@ -44,4 +44,15 @@ CutoffBound cutoff_bound(const Scene& scene, const RenderResult& render) {
     return bound;
 }
 
+std::uint64_t cutoff_violations(const CutoffBound& bound, const Image& truncated,
+                                const Image& untruncated) {
+    std::uint64_t violations = 0;
+    for (std::size_t i = 0; i < bound.per_pixel.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            const int below = untruncated.rgb[3 * i + c] - truncated.rgb[3 * i + c];
+            violations += below < 0 || below > bound.per_pixel[i];
+        }
+    return violations;
+}
+
 } // namespace glint

@@ -30,4 +30,9 @@ struct CutoffBound {
 
 CutoffBound cutoff_bound(const Scene& scene, const RenderResult& render);
 
+// Channels of `truncated` (the render the bound was made for) not within [0, bound] below the
+// same render untruncated (same rays, no cut-off): 0 when the bound holds.
+std::uint64_t cutoff_violations(const CutoffBound& bound, const Image& truncated,
+                                const Image& untruncated);
+
 } // namespace glint
