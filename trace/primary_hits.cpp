@@ -49,6 +49,36 @@ bool on_id_boundary(const IdImage& ids, int x, int y) {
 
 } // namespace
 
+Hit resolve_pixel(const World& world, const IdImage& ids, Resolve resolve, int x, int y,
+                  PrimaryStats& stats) {
+    const PinholeCamera& camera = world.camera();
+    const std::size_t p = static_cast<std::size_t>(y) * ids.width + x;
+    const Ray ray = camera.ray(x, y);
+    if (resolve == Resolve::exact && on_id_boundary(ids, x, y)) {
+        ++stats.edges;
+        return world.intersect(ray);
+    }
+    if (ids.ids[p] == 0) return {}; // nothing drawn: enclosing surfaces cover every true one
+    const std::uint32_t object = ids.ids[p] - 1;
+    ++stats.exact_intersections;
+    Hit hit = world.intersect_one(object, ray);
+    if (!hit.found()) { // inside the enclosing surface but outside the true one
+        ++stats.fallbacks;
+        return world.intersect(ray);
+    }
+    if (resolve == Resolve::exact) {
+        const Real t_raster = ids.view_depth[p] / glm::dot(ray.direction, camera.forward());
+        const Real t_start = glm::max(0.0_r, t_raster * (1 - kDepthSlack));
+        if (t_start < hit.t && world.occluded({ray.origin + t_start * ray.direction, ray.direction},
+                                              hit.t - t_start, object)) {
+            // Traced in full from the eye, so the hit is exactly ray mode's.
+            const Hit nearer = world.intersect(ray, hit.t);
+            if (nearer.found()) ++stats.corrected, hit = nearer;
+        }
+    }
+    return hit;
+}
+
 std::vector<Hit> primary_hits_from_ids(const World& world, const IdImage& ids, Resolve resolve,
                                        PrimaryStats& stats, const TileProgress& progress) {
     const PinholeCamera& camera = world.camera();
@@ -57,40 +87,10 @@ std::vector<Hit> primary_hits_from_ids(const World& world, const IdImage& ids, R
     std::mutex stats_mutex;
     for_each_tile(width, camera.height(), progress, [&](int x0, int y0, int x1, int y1) {
         PrimaryStats local;
-        for (int y = y0; y < y1; ++y) {
-            for (int x = x0; x < x1; ++x) {
-                const std::size_t p = static_cast<std::size_t>(y) * width + x;
-                if (resolve == Resolve::exact && on_id_boundary(ids, x, y)) {
-                    ++local.edges;
-                    hits[p] = world.intersect(camera.ray(x, y));
-                    continue;
-                }
-                if (ids.ids[p] == 0)
-                    continue; // nothing drawn: enclosing surfaces cover every true one
-                const std::uint32_t object = ids.ids[p] - 1;
-                const Ray ray = camera.ray(x, y);
-                ++local.exact_intersections;
-                Hit hit = world.intersect_one(object, ray);
-                if (!hit.found()) { // inside the enclosing surface but outside the true one
-                    ++local.fallbacks;
-                    hits[p] = world.intersect(ray);
-                    continue;
-                }
-                if (resolve == Resolve::exact) {
-                    const Real t_raster =
-                        ids.view_depth[p] / glm::dot(ray.direction, camera.forward());
-                    const Real t_start = glm::max(0.0_r, t_raster * (1 - kDepthSlack));
-                    if (t_start < hit.t &&
-                        world.occluded({ray.origin + t_start * ray.direction, ray.direction},
-                                       hit.t - t_start, object)) {
-                        // Traced in full from the eye, so the hit is exactly ray mode's.
-                        const Hit nearer = world.intersect(ray, hit.t);
-                        if (nearer.found()) ++local.corrected, hit = nearer;
-                    }
-                }
-                hits[p] = hit;
-            }
-        }
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x)
+                hits[static_cast<std::size_t>(y) * width + x] =
+                    resolve_pixel(world, ids, resolve, x, y, local);
         const std::lock_guard lock(stats_mutex);
         stats.exact_intersections += local.exact_intersections;
         stats.fallbacks += local.fallbacks;

@@ -32,6 +32,10 @@ struct PrimaryStats {
 // Casts the camera ray of every pixel.
 std::vector<Hit> primary_hits_by_ray(const World& world, const TileProgress& progress = {});
 
+// Resolves pixel (x, y) from `ids` (same size as the camera's image), counting into `stats`.
+Hit resolve_pixel(const World& world, const IdImage& ids, Resolve resolve, int x, int y,
+                  PrimaryStats& stats);
+
 // Resolves every pixel from `ids` (same size as the camera's image).
 std::vector<Hit> primary_hits_from_ids(const World& world, const IdImage& ids, Resolve resolve,
                                        PrimaryStats& stats, const TileProgress& progress = {});
