@@ -91,6 +91,7 @@ struct ItemBuffer::Impl {
 
     GLuint mesh_program = 0, proxy_program = 0, empty_vao = 0;
     GLuint framebuffer = 0, colour = 0, depth = 0, pack_buffer = 0;
+    GLuint flat_colour = 0; // RGBA8, attachment 1, made on the first flat-preview draw
     int width = 0, height = 0;
     std::vector<Geometry> geometries;
     std::vector<DrawItem> items;
@@ -103,6 +104,7 @@ struct ItemBuffer::Impl {
         glDeleteFramebuffers(1, &framebuffer);
         glDeleteBuffers(1, &pack_buffer);
         glDeleteTextures(1, &colour);
+        glDeleteRenderbuffers(1, &flat_colour);
         glDeleteRenderbuffers(1, &depth);
     }
 
@@ -151,15 +153,29 @@ struct ItemBuffer::Impl {
         glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colour, 0);
         glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+        if (flat_colour) attach_flat_colour();
         if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
             throw GlError(
                 "the item buffer's framebuffer (RG32UI + 32-bit float depth) is incomplete");
     }
 
-    // Clears ids to 0 and depth to 0 (reverse-Z: larger is nearer) and sets the pass's state.
-    void begin(int w, int h) {
-        resize(w, h);
+    void attach_flat_colour() {
+        if (!flat_colour) glGenRenderbuffers(1, &flat_colour);
+        glBindRenderbuffer(GL_RENDERBUFFER, flat_colour);
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
         glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_RENDERBUFFER,
+                                  flat_colour);
+    }
+
+    // Clears ids to 0 and depth to 0 (reverse-Z: larger is nearer) and sets the pass's state;
+    // with `flat_background`, also binds the flat-preview attachment, cleared to that colour.
+    void begin(int w, int h, const Vec3* flat_background = nullptr) {
+        resize(w, h);
+        if (flat_background && !flat_colour) attach_flat_colour();
+        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+        const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+        glDrawBuffers(flat_background ? 2 : 1, buffers);
         glViewport(0, 0, w, h);
         glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
         glEnable(GL_DEPTH_TEST);
@@ -169,6 +185,25 @@ struct ItemBuffer::Impl {
         const GLfloat far_depth = 0.0f;
         glClearBufferuiv(GL_COLOR, 0, zero_ids);
         glClearBufferfv(GL_DEPTH, 0, &far_depth);
+        if (flat_background) {
+            const GLfloat background[4] = {flat_background->x, flat_background->y,
+                                           flat_background->z, 1.0f};
+            glClearBufferfv(GL_COLOR, 1, background);
+        }
+    }
+
+    // The flat-preview attachment as an image, top row first.
+    Image read_flat() {
+        std::vector<std::uint8_t> rgba(static_cast<std::size_t>(width) * height * 4);
+        glReadBuffer(GL_COLOR_ATTACHMENT1);
+        glPixelStorei(GL_PACK_ALIGNMENT, 4);
+        glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+        Image image(width, height);
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x)
+                std::copy_n(&rgba[(static_cast<std::size_t>(height - 1 - y) * width + x) * 4], 3,
+                            image.pixel(x, y));
+        return image;
     }
 
     ItemBufferResult read_back(float near) {
@@ -312,19 +347,27 @@ float near_plane(const World& world) {
 
 } // namespace
 
-ItemBufferResult ItemBuffer::draw(const World& world) {
+ItemBufferResult ItemBuffer::draw(const World& world, bool flat_preview) {
     Impl& gl = *impl_;
     const PinholeCamera& camera = world.camera();
     const float near = near_plane(world);
     const glm::dmat4 clip = projection(camera, near);
-    gl.begin(camera.width(), camera.height());
+    const Vec3 background = world.background();
+    gl.begin(camera.width(), camera.height(), flat_preview ? &background : nullptr);
     for (const Impl::DrawItem& item : gl.items) {
         const Object& o = world.objects()[item.object];
         const GLuint program = item.proxy ? gl.proxy_program : gl.mesh_program;
         glUseProgram(program);
         const auto uniform = [&](const char* name) { return glGetUniformLocation(program, name); };
-        const glm::mat4 mvp(clip * to_mat4(o.transform.linear, o.transform.offset));
+        const glm::dmat4 model = to_mat4(o.transform.linear, o.transform.offset);
+        const glm::mat4 mvp(clip * model);
         glUniformMatrix4fv(uniform("model_view_projection"), 1, GL_FALSE, glm::value_ptr(mvp));
+        glUniform1i(uniform("flat_preview"), flat_preview);
+        if (flat_preview) {
+            glUniformMatrix4fv(uniform("model"), 1, GL_FALSE, glm::value_ptr(glm::mat4(model)));
+            glUniform3fv(uniform("diffuse"), 1,
+                         glm::value_ptr(world.material(item.object).diffuse));
+        }
         glUniform1i(uniform("full_screen"), item.full_screen);
         glUniform1ui(uniform("object_id"), item.object + 1);
         if (item.proxy) {
@@ -353,7 +396,9 @@ ItemBufferResult ItemBuffer::draw(const World& world) {
         }
     }
     glBindVertexArray(0);
-    return gl.read_back(near);
+    ItemBufferResult result = gl.read_back(near);
+    if (flat_preview) result.flat = gl.read_flat();
+    return result;
 }
 
 ItemBufferResult ItemBuffer::draw_triangle_for_test(const World& world, const Vec3 (&corners)[3],

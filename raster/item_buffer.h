@@ -3,6 +3,7 @@
 // exactly the tracer's pinhole camera, then read back as an IdImage for trace/ to resolve.
 #pragma once
 
+#include "trace/image.h"
 #include "trace/primary_hits.h"
 
 #include <memory>
@@ -20,6 +21,7 @@ std::string_view raster_mode_name(RasterMode mode);
 struct ItemBufferResult {
     IdImage ids;
     std::vector<std::uint32_t> primitives; // per pixel: triangle index within the drawn mesh
+    Image flat; // with draw(world, true): each object's diffuse colour, flat-shaded by facet
 };
 
 class ItemBuffer {
@@ -34,8 +36,9 @@ class ItemBuffer {
     // of segments around curved outlines.
     void upload(const World& world, RasterMode mode, int tessellation);
 
-    // Draws the uploaded objects from the world's camera and reads back ids and depth.
-    ItemBufferResult draw(const World& world);
+    // Draws the uploaded objects from the world's camera and reads back ids and depth, and with
+    // `flat_preview` also a flat-shaded colour image in the same pass (glint preview's first look).
+    ItemBufferResult draw(const World& world, bool flat_preview = false);
 
     // Per object, in world units: how far what was drawn may lie from the true surface.
     const std::vector<float>& deviations() const { return deviations_; }

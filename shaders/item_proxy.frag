@@ -11,7 +11,10 @@ uniform vec3 right_scaled;    // right · tan(fov_y/2) · aspect
 uniform vec3 up_scaled;       // up · tan(fov_y/2)
 uniform vec2 viewport;
 uniform float near;
+uniform bool flat_preview; // write `colour` too, as item_mesh.frag does
+uniform vec3 diffuse;
 layout(location = 0) out uvec2 item;
+layout(location = 1) out vec4 colour;
 
 const float kInfinity = 1.0 / 0.0;
 
@@ -79,6 +82,12 @@ void main() {
         float k = shape == 4 ? 0.0 : 1.0 - top_radius;
         t = min(side(o, dl, k), disk(o, dl, 1.0, 0.0));
         if (shape == 4 || top_radius > 0.0) t = min(t, disk(o, dl, 1.0 - k, 1.0));
+    }
+    if (flat_preview) { // derivatives before the discard, over the whole 2×2 quad
+        vec3 p = t < kInfinity ? t * d : vec3(0.0);
+        vec3 facet = cross(dFdx(p), dFdy(p));
+        vec3 n = length(facet) > 0.0 ? normalize(facet) : vec3(0.0);
+        colour = vec4(diffuse * (0.15 + 0.85 * abs(dot(n, d))), 1.0);
     }
     if (t == kInfinity) discard;
     gl_FragDepth = near / (t * dot(d, forward)); // reverse-Z: near / view depth

@@ -203,6 +203,42 @@ TEST(GlStability, ReverseZSeparatesWallsAMillionAwayWithANearObjectInView) {
     EXPECT_GT(front, ray.primary.size() / 10) << "the front wall should fill part of the view";
 }
 
+// The preview's flat image comes from the same pass as the ids: every pixel an object covers
+// shows that object's diffuse colour dimmed by its facet's angle to the eye, 0.15 to 1 (the
+// shader's ambient floor), and the background shows the scene's background.
+TEST_P(GlTest, FlatPreviewShowsEachObjectsDiffuseColourFromTheSamePass) {
+    Scene scene = load_scene(GLINT_SOURCE_DIR "/scenes/primitives.json");
+    scene.camera.width = 200, scene.camera.height = 150;
+    const World world(scene);
+    const auto context = make_context(GetParam());
+    ItemBuffer items;
+    for (const RasterMode mode : {RasterMode::mesh, RasterMode::proxy}) {
+        items.upload(world, mode, kDefaultTessellation);
+        const ItemBufferResult plain = items.draw(world);
+        const ItemBufferResult drawn = items.draw(world, true);
+        EXPECT_EQ(plain.ids.ids, drawn.ids.ids) << "the flat colour must not change the ids";
+        EXPECT_TRUE(plain.flat.rgb.empty());
+        ASSERT_EQ(drawn.flat.width, 200);
+        ASSERT_EQ(drawn.flat.height, 150);
+        std::size_t checked = 0, off = 0;
+        for (int y = 0; y < 150; ++y) {
+            for (int x = 0; x < 200; ++x) {
+                const std::uint32_t id = drawn.ids.ids[static_cast<std::size_t>(y) * 200 + x];
+                const Vec3 expected = id == 0 ? world.background() : world.material(id - 1).diffuse;
+                const std::uint8_t* p = drawn.flat.pixel(x, y);
+                for (int c = 0; c < 3; ++c) {
+                    // One byte of rounding either way on top of the shading factor's range.
+                    const float lo = id == 0 ? expected[c] : 0.15f * expected[c];
+                    ++checked;
+                    off += p[c] + 1 < 255.0f * lo || p[c] > 255.0f * expected[c] + 1;
+                }
+            }
+        }
+        EXPECT_EQ(off, 0u) << "of " << checked << " channels, in " << raster_mode_name(mode)
+                           << " mode";
+    }
+}
+
 // Every shipped scene, both raster modes, both resolve settings, against ray mode.
 struct SceneCase {
     const char* scene;
