@@ -53,14 +53,15 @@ std::optional<AccelKind> SceneOptions::accel_kind() const {
     return accel_from_name(accel);
 }
 
-void FrameOptions::add_to(CLI::App& cmd, bool with_mode) {
+void FrameOptions::add_to(CLI::App& cmd, bool with_mode, bool with_gl) {
     if (with_mode)
         cmd.add_option("--mode", mode, "Primary visibility: hybrid (item buffer) or ray")
             ->capture_default_str()
             ->check(CLI::IsMember({"hybrid", "ray"}));
-    cmd.add_option("--gl", gl, "Headless GL for the item buffer: osmesa or egl")
-        ->capture_default_str()
-        ->check(CLI::IsMember({"osmesa", "egl"}));
+    if (with_gl)
+        cmd.add_option("--gl", gl, "Headless GL for the item buffer: osmesa or egl")
+            ->capture_default_str()
+            ->check(CLI::IsMember({"osmesa", "egl"}));
     cmd.add_option("--raster", raster,
                    "Item buffer: mesh (tessellated) or proxy (exact, per-fragment)")
         ->capture_default_str()

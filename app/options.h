@@ -44,8 +44,9 @@ struct FrameOptions {
     int tessellation = kDefaultTessellation;
     int threads = 0;
 
-    // `with_mode`: whether --mode is offered (compare runs both modes).
-    void add_to(CLI::App& cmd, bool with_mode);
+    // `with_mode`: whether --mode is offered (compare runs both modes); `with_gl`: whether --gl
+    // is (the preview's GL is its window's).
+    void add_to(CLI::App& cmd, bool with_mode, bool with_gl = true);
     FrameSettings settings() const;
     // One line for people: "hybrid (osmesa, mesh, tess 32, exact)".
     std::string describe() const;

@@ -73,6 +73,17 @@ TEST(Cli, RenderWritesThePngAndReportsPathTimeAndRayCounts) {
     EXPECT_TRUE(r.err.empty()) << "no progress output when stderr is not a terminal: " << r.err;
 }
 
+// No display: the preview says so and names the two ways on, and opens nothing.
+TEST(Cli, PreviewWithoutADisplayNamesGlintRenderAndXvfbRun) {
+    const fs::path dir = fresh_dir();
+    const Outcome r = glint(dir, "preview '" GLINT_SOURCE_DIR "/scenes/default.json'",
+                            "env -u DISPLAY -u WAYLAND_DISPLAY");
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find("no display"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("`glint render "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("`xvfb-run -a glint preview "), std::string::npos) << r.err;
+}
+
 // Fields of one CSV line (no field of glint's CSV holds a comma).
 std::vector<std::string> fields(const std::string& line) {
     std::vector<std::string> out(1);
@@ -149,7 +160,9 @@ TEST_P(BadRunTest, ExitsTwoWithItsMessageAndWritesNothing) {
     const fs::path dir = fresh_dir();
     if (*bad.scene) write(dir / "scene.json", bad.scene);
     write(dir / "keep.png", "precious");
-    Outcome r = glint(dir, std::string(bad.args) + " -o new.png");
+    // The preview has no -o: its only output is --screenshot, which its cases name.
+    const bool preview = std::string_view(bad.args).starts_with("preview");
+    Outcome r = glint(dir, std::string(bad.args) + (preview ? "" : " -o new.png"));
     EXPECT_EQ(r.exit_code, 2) << bad.what << ": " << r.err;
     EXPECT_NE(r.err.find(bad.message), std::string::npos) << bad.what << ": " << r.err;
     EXPECT_FALSE(fs::exists(dir / "new.png")) << bad.what;
@@ -190,6 +203,12 @@ INSTANTIATE_TEST_SUITE_P(EveryClass, BadRunTest, ::testing::Values(
     BadRun{"tessellation below the minimum", "", "render --tess 2", "--tess"},
     BadRun{"unknown resolve", "", "render --resolve maybe", "--resolve"},
     BadRun{"compare: bad scene", R"({"objects": 1})", "compare scene.json", "scene.json: /objects: expected an array"},
+    BadRun{"preview: bad scene", R"({"objects": 1})", "preview scene.json", "scene.json: /objects: expected an array"},
+    BadRun{"preview: screenshot not PNG", "", "preview --screenshot shot.jpg", "--screenshot shot.jpg: glint writes PNG files (.png)"},
+    BadRun{"preview: screenshot nowhere", "", "preview --screenshot no/such/dir/a.png", "--screenshot no/such/dir/a.png: directory no/such/dir does not exist"},
+    BadRun{"preview: spin without frames", "", "preview --spin 5", "--spin: orbits during the --frames N scripted frames; give --frames"},
+    BadRun{"preview: unknown view", "", "preview --view xray", "--view"},
+    BadRun{"preview: no GL choice", "", "preview --gl egl", "--gl"},
     BadRun{"tradeoff: bad scene", R"({"objects": 1})", "tradeoff scene.json", "scene.json: /objects: expected an array"},
     BadRun{"tradeoff: bad size", "", "tradeoff --size 0x5", "--size 0x5: each side must be 1 to 16384"},
     BadRun{"tradeoff: no repeat", "", "tradeoff --repeat 0", "--repeat"},

@@ -1,0 +1,87 @@
+// `glint preview`: the scene in a window (preview/preview.h), or scripted for tests and docs.
+#include "app/options.h"
+
+#include "preview/preview.h"
+#include "raster/window.h"
+
+#include <iostream>
+
+namespace glint {
+namespace {
+
+struct PreviewArgs {
+    SceneOptions scene;
+    FrameOptions frame;
+    int frames = 0;
+    std::string screenshot;
+    double spin = 0;
+    std::string view = "final";
+};
+
+PreviewOptions prepare(const PreviewArgs& args) {
+    PreviewOptions options;
+    options.frames = args.frames;
+    options.spin = args.spin;
+    options.screenshot = args.screenshot;
+    if (!options.screenshot.empty()) {
+        if (options.screenshot.extension() != ".png")
+            throw UsageError("--screenshot " + args.screenshot + ": glint writes PNG files (.png)");
+        check_output(options.screenshot, "--screenshot");
+    }
+    if (args.spin != 0 && args.frames == 0)
+        throw UsageError("--spin: orbits during the --frames N scripted frames; give --frames");
+    options.scene = args.scene.load();
+    options.scene_name = args.scene.scene_path().string();
+    options.accel = args.scene.accel_kind();
+    options.frame = args.frame.settings();
+    for (int v = 0; v < kViewCount; ++v)
+        if (view_key(static_cast<View>(v)) == args.view) options.view = static_cast<View>(v);
+    // The preview holds the item buffer, its flat image and four traced views of each frame.
+    check_frame_memory(options.scene.camera, Mode::hybrid, 2);
+    return options;
+}
+
+int run(const PreviewArgs& args) {
+    const PreviewOptions options = prepare(args);
+    try {
+        return run_preview(options);
+    } catch (const NoDisplayError& e) {
+        std::cerr << "glint: error: no display to open the preview window on (" << e.what()
+                  << ")\nglint: render without a window with `glint render " << options.scene_name
+                  << "`, or give the preview a virtual display: `xvfb-run -a glint preview "
+                  << options.scene_name << "`\n";
+        return 1;
+    } catch (const GlError& e) {
+        std::cerr << "glint: error: the preview window has no usable OpenGL: " << e.what()
+                  << "\nglint: render without a window with `glint render`\n";
+        return 1;
+    }
+}
+
+} // namespace
+
+Command add_preview_command(CLI::App& app) {
+    auto args = std::make_shared<PreviewArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "preview", "Open a scene in a window: fly the camera and watch the trace refine (H: keys)");
+    args->scene.add_to(*cmd);
+    args->frame.add_to(*cmd, true, false);
+    cmd->add_option("--frames", args->frames,
+                    "Scripted: draw at least N frames, wait until the trace has refined, then exit")
+        ->check(CLI::Range(0, 1000000));
+    cmd->add_option("--screenshot", args->screenshot,
+                    "Scripted: save the refined window's framebuffer to this PNG, then exit");
+    cmd->add_option("--spin", args->spin,
+                    "Scripted: orbit this many degrees each of the --frames frames (to measure "
+                    "responsiveness while the trace restarts)")
+        ->check(CLI::Range(-360.0, 360.0));
+    cmd->add_option("--view", args->view,
+                    "The view shown first: final, items (item buffer), depth, normals, "
+                    "difference (ray vs hybrid) or reflections (reflection depth)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"final", "items", "depth", "normals", "difference", "reflections"}));
+    return {cmd, [args] { prepare(*args); },
+            [args] { return guarded([&] { return run(*args); }); }};
+}
+
+} // namespace glint

@@ -1,0 +1,458 @@
+#include "preview/preview.h"
+
+#include "preview/orbit_camera.h"
+#include "preview/refiner.h"
+#include "preview/views.h"
+
+#include "raster/item_buffer.h"
+#include "raster/window.h"
+#include "trace/scene_loader.h"
+
+#include <glad/gl.h>
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+
+namespace glint {
+
+const std::string_view kPreviewKeys = R"(glint preview keys
+  left drag         orbit around look_at
+  right/middle drag pan
+  wheel             dolly towards / away from look_at
+  R                 reset the camera to the scene's
+  1 … 6             view: final image, item buffer, depth, normals, ray vs hybrid, reflection depth
+  V                 next view
+  [ ]               max reflection depth − / +
+  - =               tessellation ÷2 / ×2 (mesh raster mode)
+  M                 raster mode: mesh / proxy
+  E                 resolve mode: exact / trust
+  T                 tracer: hybrid (item buffer) / ray
+  P                 save a screenshot PNG
+  H                 this list
+  Esc, Q            quit
+)";
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// Frame times of the UI thread: the work between two waits for input, not the wait.
+struct FrameLog {
+    double start_up = 0;                  // the first item buffer and trace start, milliseconds
+    double first_frame = 0;               // the first image on screen
+    std::vector<double> frames, restarts; // milliseconds
+
+    static double percentile(std::vector<double> v, double p) {
+        if (v.empty()) return 0;
+        std::sort(v.begin(), v.end());
+        return v[static_cast<std::size_t>(p * static_cast<double>(v.size() - 1) + 0.5)];
+    }
+    void print() const {
+        const auto over =
+            std::count_if(frames.begin(), frames.end(), [](double t) { return t > 100; });
+        std::printf("UI thread: start-up %.0f ms + first frame %.0f ms; then %zu frames, median "
+                    "%.1f ms, 99th percentile %.1f "
+                    "ms, max %.1f ms, "
+                    "%td over 100 ms; %zu trace restarts (camera or setting changes), median %.1f "
+                    "ms, max %.1f ms\n",
+                    start_up, first_frame, frames.size(), percentile(frames, 0.5),
+                    percentile(frames, 0.99), percentile(frames, 1.0), over, restarts.size(),
+                    percentile(restarts, 0.5), percentile(restarts, 1.0));
+    }
+};
+
+class Preview {
+  public:
+    explicit Preview(const PreviewOptions& options);
+    ~Preview();
+    Preview(const Preview&) = delete;
+    Preview& operator=(const Preview&) = delete;
+
+    int run();
+
+  private:
+    void restart();
+    void show_base();
+    bool upload_tiles(); // true when every tile of the current view is on screen
+    void present();
+    void save_screenshot(const std::filesystem::path& path);
+    void update_title(bool force);
+    std::string describe_settings() const;
+
+    void on_key(int key);
+    void on_cursor(double x, double y);
+    void on_button(int button, int action);
+    void on_scroll(double dy);
+
+    const PreviewOptions& options_;
+    Window window_;
+    OrbitCamera camera_;
+    Scene scene_;
+    FrameSettings frame_;
+    View view_ = View::final;
+    ItemBuffer items_;
+    bool upload_needed_ = true, dirty_ = true;
+    std::shared_ptr<const IdImage> ids_;
+    Image flat_, derived_; // derived_: the item-buffer or depth view, made when shown
+    std::shared_ptr<RefineJob> job_;
+    std::vector<char> uploaded_; // per tile of the current job, for the current view
+    GLuint texture_ = 0, read_framebuffer_ = 0;
+    int texture_width_ = 0, texture_height_ = 0;
+    int button_ = -1; // the mouse button held, if any
+    double cursor_x_ = 0, cursor_y_ = 0;
+    bool screenshot_requested_ = false;
+    int screenshots_ = 0;
+    Clock::time_point title_time_{};
+    std::string title_;
+    FrameLog log_;
+    Refiner refiner_; // last: its workers stop before anything they read goes
+};
+
+Preview::Preview(const PreviewOptions& options)
+    : options_(options),
+      window_(options.scene.camera.width, options.scene.camera.height,
+              ("glint preview — " + std::filesystem::path(options.scene_name).filename().string())
+                  .c_str(),
+              !options.scripted()),
+      camera_(options.scene.camera), scene_(options.scene), frame_(options.frame),
+      view_(options.view), refiner_(options.frame.threads) {
+    glfwSwapInterval(0); // frames are paced by the loop; swapping never waits for a display
+    glGenTextures(1, &texture_);
+    glGenFramebuffers(1, &read_framebuffer_);
+    GLFWwindow* w = window_.handle();
+    glfwSetWindowUserPointer(w, this);
+    glfwSetKeyCallback(w, [](GLFWwindow* window, int key, int, int action, int) {
+        if (action != GLFW_RELEASE)
+            static_cast<Preview*>(glfwGetWindowUserPointer(window))->on_key(key);
+    });
+    glfwSetCursorPosCallback(w, [](GLFWwindow* window, double x, double y) {
+        static_cast<Preview*>(glfwGetWindowUserPointer(window))->on_cursor(x, y);
+    });
+    glfwSetMouseButtonCallback(w, [](GLFWwindow* window, int button, int action, int) {
+        static_cast<Preview*>(glfwGetWindowUserPointer(window))->on_button(button, action);
+    });
+    glfwSetScrollCallback(w, [](GLFWwindow* window, double, double dy) {
+        static_cast<Preview*>(glfwGetWindowUserPointer(window))->on_scroll(dy);
+    });
+}
+
+Preview::~Preview() {
+    refiner_.stop();
+    glDeleteFramebuffers(1, &read_framebuffer_);
+    glDeleteTextures(1, &texture_);
+}
+
+std::string Preview::describe_settings() const {
+    std::string text = frame_.mode == Mode::ray ? "ray" : "hybrid ";
+    if (frame_.mode == Mode::hybrid) {
+        text += raster_mode_name(frame_.raster);
+        if (frame_.raster == RasterMode::mesh)
+            text += " tess " + std::to_string(frame_.tessellation);
+        text += frame_.resolve == Resolve::exact ? " exact" : " trust";
+    }
+    return text + ", depth " + std::to_string(scene_.render.max_depth);
+}
+
+void Preview::on_key(int key) {
+    switch (key) {
+    case GLFW_KEY_ESCAPE:
+    case GLFW_KEY_Q:
+        glfwSetWindowShouldClose(window_.handle(), GLFW_TRUE);
+        return;
+    case GLFW_KEY_H:
+        std::cout << kPreviewKeys << std::flush;
+        return;
+    case GLFW_KEY_P:
+        screenshot_requested_ = true;
+        return;
+    case GLFW_KEY_R:
+        camera_.reset();
+        dirty_ = true;
+        return;
+    case GLFW_KEY_V:
+        view_ = static_cast<View>((static_cast<int>(view_) + 1) % kViewCount);
+        break;
+    case GLFW_KEY_LEFT_BRACKET:
+    case GLFW_KEY_RIGHT_BRACKET:
+        scene_.render.max_depth = std::clamp(
+            scene_.render.max_depth + (key == GLFW_KEY_RIGHT_BRACKET ? 1 : -1), 0, kMaxDepth);
+        dirty_ = true;
+        return;
+    case GLFW_KEY_MINUS:
+    case GLFW_KEY_EQUAL:
+        frame_.tessellation =
+            std::clamp(key == GLFW_KEY_EQUAL ? frame_.tessellation * 2 : frame_.tessellation / 2,
+                       kMinTessellation, kMaxTessellation);
+        upload_needed_ = dirty_ = true;
+        return;
+    case GLFW_KEY_M:
+        frame_.raster = frame_.raster == RasterMode::mesh ? RasterMode::proxy : RasterMode::mesh;
+        upload_needed_ = dirty_ = true;
+        return;
+    case GLFW_KEY_E:
+        frame_.resolve = frame_.resolve == Resolve::exact ? Resolve::trust : Resolve::exact;
+        dirty_ = true;
+        return;
+    case GLFW_KEY_T:
+        frame_.mode = frame_.mode == Mode::hybrid ? Mode::ray : Mode::hybrid;
+        dirty_ = true;
+        return;
+    default:
+        if (key < GLFW_KEY_1 || key >= GLFW_KEY_1 + kViewCount) return;
+        view_ = static_cast<View>(key - GLFW_KEY_1);
+    }
+    show_base(); // a new view
+    update_title(true);
+}
+
+void Preview::on_button(int button, int action) {
+    button_ = action == GLFW_PRESS ? button : -1;
+    glfwGetCursorPos(window_.handle(), &cursor_x_, &cursor_y_);
+}
+
+void Preview::on_cursor(double x, double y) {
+    const double dx = x - cursor_x_, dy = y - cursor_y_;
+    cursor_x_ = x, cursor_y_ = y;
+    if (button_ == GLFW_MOUSE_BUTTON_LEFT) {
+        camera_.orbit(0.3 * dx, -0.3 * dy); // degrees per screen pixel
+        dirty_ = true;
+    } else if (button_ == GLFW_MOUSE_BUTTON_RIGHT || button_ == GLFW_MOUSE_BUTTON_MIDDLE) {
+        // Cursor motion is in screen coordinates; the image is in framebuffer pixels.
+        int window_width = 1, window_height = 1;
+        glfwGetWindowSize(window_.handle(), &window_width, &window_height);
+        const double scale =
+            static_cast<double>(camera_.camera().width) / std::max(window_width, 1);
+        camera_.pan(dx * scale, -dy * scale);
+        dirty_ = true;
+    }
+}
+
+void Preview::on_scroll(double dy) {
+    camera_.dolly(dy);
+    dirty_ = true;
+}
+
+// A new camera or setting: stop tracing, draw the item buffer (and the flat preview with it),
+// show that, and start tracing tiles.
+void Preview::restart() {
+    const auto start = Clock::now();
+    refiner_.stop();
+    job_.reset();
+    Scene scene = scene_;
+    scene.camera = camera_.camera();
+    auto world = std::make_shared<const World>(scene, options_.accel);
+    if (upload_needed_) {
+        items_.upload(*world, frame_.raster, frame_.tessellation);
+        upload_needed_ = false;
+    }
+    ItemBufferResult drawn = items_.draw(*world, true);
+    flat_ = std::move(drawn.flat);
+    ids_ = std::make_shared<const IdImage>(std::move(drawn.ids));
+    job_ = std::make_shared<RefineJob>(world, frame_.mode == Mode::hybrid ? ids_ : nullptr,
+                                       frame_.resolve);
+    refiner_.start(job_);
+    show_base();
+    dirty_ = false;
+    log_.restarts.push_back(ms_since(start));
+    update_title(true);
+}
+
+// Puts the current view's whole image in the texture: the item buffer's own views, or the flat
+// preview that traced tiles then replace as they finish.
+void Preview::show_base() {
+    if (!job_) return;
+    const int width = job_->width(), height = job_->height();
+    glBindTexture(GL_TEXTURE_2D, texture_);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+    glPixelStorei(GL_UNPACK_SKIP_PIXELS, 0);
+    glPixelStorei(GL_UNPACK_SKIP_ROWS, 0);
+    const Image* base = &flat_;
+    if (view_ == View::items) derived_ = item_image(*ids_), base = &derived_;
+    if (view_ == View::depth) derived_ = depth_image(*ids_), base = &derived_;
+    if (width != texture_width_ || height != texture_height_) {
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, width, height, 0, GL_RGB, GL_UNSIGNED_BYTE,
+                     base->rgb.data());
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, read_framebuffer_);
+        glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture_,
+                               0);
+        texture_width_ = width, texture_height_ = height;
+    } else {
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE,
+                        base->rgb.data());
+    }
+    uploaded_.assign(static_cast<std::size_t>(job_->tile_count()), is_traced(view_) ? 0 : 1);
+}
+
+bool Preview::upload_tiles() {
+    if (!job_) return true;
+    if (!is_traced(view_)) return true;
+    const Image& image = job_->traced(view_);
+    glBindTexture(GL_TEXTURE_2D, texture_);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, image.width);
+    bool all = true;
+    for (int t = 0; t < job_->tile_count(); ++t) {
+        if (uploaded_[static_cast<std::size_t>(t)]) continue;
+        if (!job_->tile_done(t)) {
+            all = false;
+            continue;
+        }
+        const TileRect r = job_->tile(t);
+        glPixelStorei(GL_UNPACK_SKIP_PIXELS, r.x0);
+        glPixelStorei(GL_UNPACK_SKIP_ROWS, r.y0);
+        glTexSubImage2D(GL_TEXTURE_2D, 0, r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0, GL_RGB,
+                        GL_UNSIGNED_BYTE, image.rgb.data());
+        uploaded_[static_cast<std::size_t>(t)] = 1;
+    }
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+    glPixelStorei(GL_UNPACK_SKIP_PIXELS, 0);
+    glPixelStorei(GL_UNPACK_SKIP_ROWS, 0);
+    return all;
+}
+
+// The texture (row 0 = the image's top) onto the window, flipped to GL's bottom-up rows, scaled
+// to the framebuffer while a resize is on its way.
+void Preview::present() {
+    const auto [width, height] = window_.framebuffer_size();
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    glViewport(0, 0, width, height);
+    glClearColor(0, 0, 0, 1);
+    glClear(GL_COLOR_BUFFER_BIT);
+    if (texture_width_ > 0) {
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, read_framebuffer_);
+        glBlitFramebuffer(0, 0, texture_width_, texture_height_, 0, height, width, 0,
+                          GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    }
+}
+
+// The window's framebuffer as shown (call after present(), before swapping).
+void Preview::save_screenshot(const std::filesystem::path& path) {
+    const auto [width, height] = window_.framebuffer_size();
+    std::vector<std::uint8_t> rgb(static_cast<std::size_t>(width) * height * 3);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    glReadBuffer(GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
+    Image image(width, height);
+    const std::size_t row = static_cast<std::size_t>(width) * 3;
+    for (int y = 0; y < height; ++y)
+        std::copy_n(&rgb[static_cast<std::size_t>(height - 1 - y) * row], row,
+                    &image.rgb[static_cast<std::size_t>(y) * row]);
+    write_png(path, image);
+    std::printf("glint: saved %s (%dx%d, %s)\n", path.c_str(), width, height,
+                std::string(view_name(view_)).c_str());
+}
+
+// The title is the overlay: view, settings, progress and timings. Set only when its text changes:
+// each change is an X event that would wake the idle loop again.
+void Preview::update_title(bool force) {
+    if (!force && ms_since(title_time_) < 250) return;
+    title_time_ = Clock::now();
+    std::string title = "glint preview — " +
+                        std::filesystem::path(options_.scene_name).filename().string() + " — " +
+                        std::string(view_name(view_)) + " — " + describe_settings() + " — ";
+    if (job_) {
+        char progress[160];
+        const RayCounts rays = job_->rays();
+        if (job_->finished())
+            std::snprintf(progress, sizeof progress, "%dx%d traced in %.2f s, %.2f M rays",
+                          job_->width(), job_->height(), job_->seconds(),
+                          static_cast<double>(rays.primary + rays.shadow + rays.reflection) / 1e6);
+        else
+            std::snprintf(progress, sizeof progress, "%dx%d tracing %d%%", job_->width(),
+                          job_->height(), 100 * job_->tiles_done() / job_->tile_count());
+        title += progress;
+        if (view_ == View::difference)
+            title += ", " + std::to_string(job_->differing_pixels()) + " pixels differ";
+    }
+    title += " — H: keys";
+    if (title == title_) return;
+    title_ = title;
+    glfwSetWindowTitle(window_.handle(), title_.c_str());
+}
+
+int Preview::run() {
+    GLFWwindow* w = window_.handle();
+    if (!options_.scripted()) std::cout << kPreviewKeys << std::flush;
+    // The first item buffer compiles llvmpipe's shader variants and touches every buffer for the
+    // first time: start-up, reported apart from the frames.
+    const auto start_up = Clock::now();
+    restart();
+    log_.start_up = ms_since(start_up);
+    log_.restarts.clear();
+    const auto period = std::chrono::microseconds(16667); // at most 60 frames a second
+    auto next_frame = Clock::now();
+    int frames = 0;
+    bool complete = false;
+    while (!glfwWindowShouldClose(w)) {
+        // Wait for input; while something is still to show, no longer than the next frame.
+        if (options_.scripted() || dirty_ || !complete)
+            glfwWaitEventsTimeout(
+                std::max(0.0, std::chrono::duration<double>(next_frame - Clock::now()).count()));
+        else
+            glfwWaitEvents();
+        const auto start = Clock::now();
+        next_frame = start + period;
+        if (options_.spin != 0 && frames < options_.frames) {
+            camera_.orbit(options_.spin, 0);
+            dirty_ = true;
+        }
+        const auto [width, height] = window_.framebuffer_size();
+        if (width > 0 && height > 0 &&
+            (width != camera_.camera().width || height != camera_.camera().height)) {
+            camera_.resize(width, height);
+            dirty_ = true;
+        }
+        if (dirty_ && width > 0 && height > 0) restart();
+        complete = upload_tiles() && job_ && job_->finished();
+        present();
+        ++frames;
+        const bool done = options_.scripted() && frames >= options_.frames && complete;
+        // The first frame puts the first image on screen: part of start-up.
+        (frames == 1 ? log_.first_frame : log_.frames.emplace_back()) = ms_since(start);
+        update_title(complete);
+        if (screenshot_requested_ || (done && !options_.screenshot.empty())) {
+            std::filesystem::path path = options_.screenshot;
+            if (screenshot_requested_ || path.empty()) {
+                std::filesystem::create_directories("out");
+                path = "out/" + std::filesystem::path(options_.scene_name).stem().string() +
+                       "-preview-" + std::to_string(++screenshots_) + ".png";
+            }
+            try {
+                save_screenshot(path);
+            } catch (const std::exception& e) {
+                if (done) throw; // scripted: the screenshot was the point
+                std::cerr << "glint: error: could not save a screenshot: " << e.what() << "\n";
+            }
+            screenshot_requested_ = false;
+        }
+        glfwSwapBuffers(w);
+        if (done) break;
+    }
+    log_.print();
+    if (job_ && job_->finished())
+        std::printf("last trace: %dx%d in %.2f s on %d threads\n", job_->width(), job_->height(),
+                    job_->seconds(), refiner_.threads());
+    return 0;
+}
+
+} // namespace
+
+int run_preview(const PreviewOptions& options) {
+    Preview preview(options);
+    return preview.run();
+}
+
+} // namespace glint

@@ -1,0 +1,39 @@
+// `glint preview`: a window on a scene. The GL item buffer (with a flat-shaded colour image from
+// the same pass) shows at once; the hybrid trace then refines it tile by tile on worker threads
+// while the UI thread keeps handling input. Any change of camera or setting restarts the trace.
+#pragma once
+
+#include "app/frame.h"
+#include "preview/views.h"
+#include "trace/scene.h"
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace glint {
+
+struct PreviewOptions {
+    Scene scene;
+    std::string scene_name; // for the title and screenshot names
+    std::optional<AccelKind> accel;
+    FrameSettings frame;     // mode, raster, tessellation, resolve, threads (the window is the GL)
+    View view = View::final; // the view shown first
+    // Scripted use: draw at least `frames` frames (orbiting `spin` degrees each), then wait until
+    // the trace has fully refined, save the framebuffer to `screenshot` (if given) and exit.
+    int frames = 0;
+    std::filesystem::path screenshot;
+    double spin = 0;
+
+    bool scripted() const { return frames > 0 || !screenshot.empty(); }
+};
+
+// The keys, as H prints them (README's list is this text).
+extern const std::string_view kPreviewKeys;
+
+// Opens the window and runs until it closes (or, scripted, until done). Returns the exit code.
+// Throws NoDisplayError when there is no display, GlError when the window has no usable GL.
+int run_preview(const PreviewOptions& options);
+
+} // namespace glint

@@ -1,0 +1,91 @@
+// Progressive tracing for the preview: one job per camera and settings, traced in 32×32 tiles
+// from the image centre outwards by worker threads, while the UI thread shows each tile as it
+// finishes. A job is cancelled (between tiles) as soon as the camera moves. Each traced pixel is
+// computed exactly as `glint render` computes it, so a finished job is the headless image.
+#pragma once
+
+#include "preview/views.h"
+
+#include "trace/render.h"
+
+#include <atomic>
+#include <chrono>
+#include <memory>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace glint {
+
+struct TileRect {
+    int x0, y0, x1, y1;
+};
+
+class RefineJob {
+  public:
+    // `ids`: the item buffer for hybrid resolve; null traces every primary ray (ray mode).
+    RefineJob(std::shared_ptr<const World> world, std::shared_ptr<const IdImage> ids,
+              Resolve resolve);
+
+    const World& world() const { return *world_; }
+    int width() const { return final_.width; }
+    int height() const { return final_.height; }
+
+    // The traced image of a view (is_traced(view)); read a tile's pixels only once it is done.
+    const Image& traced(View view) const;
+    int tile_count() const { return static_cast<int>(order_.size()); }
+    TileRect tile(int index) const; // in row-major tile order
+    bool tile_done(int index) const { return done_[index].load(std::memory_order_acquire); }
+    int tiles_done() const { return tiles_done_.load(std::memory_order_acquire); }
+    bool finished() const { return tiles_done() == tile_count(); }
+
+    // Traces tiles until none is left or `cancel` is set; several threads may call it at once.
+    void work(const std::atomic<bool>& cancel);
+
+    // Totals over the tiles done so far (read them once finished for the whole image).
+    RayCounts rays() const;
+    PrimaryStats primary_stats() const;
+    std::uint64_t differing_pixels() const; // hybrid and ray primary hits name other objects
+    double seconds() const;                 // since the job was made, to its last tile
+
+  private:
+    void trace_tile(const TileRect& rect);
+
+    std::shared_ptr<const World> world_;
+    std::shared_ptr<const IdImage> ids_;
+    Resolve resolve_;
+    Image final_, normals_, difference_, reflections_;
+    int tiles_x_;
+    std::vector<int> order_; // tile indices, nearest the image centre first
+    std::unique_ptr<std::atomic<bool>[]> done_;
+    std::atomic<int> next_{0}, tiles_done_{0};
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+    mutable std::mutex totals_mutex_;
+    RayCounts rays_;
+    PrimaryStats stats_;
+    std::uint64_t differing_ = 0;
+    double seconds_ = 0;
+};
+
+// Runs one job at a time on `threads` worker threads.
+class Refiner {
+  public:
+    explicit Refiner(int threads);
+    ~Refiner() { stop(); }
+    Refiner(const Refiner&) = delete;
+    Refiner& operator=(const Refiner&) = delete;
+
+    // Stops the current job (if any) and starts tracing `job`.
+    void start(std::shared_ptr<RefineJob> job);
+    // Cancels the current job and waits for its workers: at most one tile each.
+    void stop();
+    int threads() const { return threads_; }
+
+  private:
+    int threads_;
+    std::atomic<bool> cancel_{false};
+    std::vector<std::thread> workers_;
+    std::shared_ptr<RefineJob> job_;
+};
+
+} // namespace glint

@@ -1,0 +1,93 @@
+#include "preview/views.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace glint {
+
+std::string_view view_name(View view) {
+    switch (view) {
+    case View::final:
+        return "final image";
+    case View::items:
+        return "item buffer";
+    case View::depth:
+        return "depth";
+    case View::normals:
+        return "normals";
+    case View::difference:
+        return "ray vs hybrid";
+    case View::reflections:
+        return "reflection depth";
+    }
+    return "?";
+}
+
+std::string_view view_key(View view) {
+    constexpr std::string_view keys[kViewCount] = {"final",   "items",      "depth",
+                                                   "normals", "difference", "reflections"};
+    return keys[static_cast<int>(view)];
+}
+
+Rgb id_colour(std::uint32_t id) {
+    if (id == 0) return {0, 0, 0};
+    // Golden-ratio hues: neighbouring ids get far-apart colours.
+    const float hue = std::fmod(static_cast<float>(id) * 0.618034f, 1.0f) * 6.0f;
+    const float f = hue - std::floor(hue);
+    const int sector = static_cast<int>(hue);
+    const float lo = 0.25f, hi = 1.0f, rise = lo + (hi - lo) * f, fall = hi - (hi - lo) * f;
+    const float rgb[6][3] = {{hi, rise, lo}, {fall, hi, lo}, {lo, hi, rise},
+                             {lo, fall, hi}, {rise, lo, hi}, {hi, lo, fall}};
+    const float* c = rgb[std::clamp(sector, 0, 5)];
+    return {to_byte(c[0]), to_byte(c[1]), to_byte(c[2])};
+}
+
+Rgb normal_colour(glm::vec3 normal) {
+    const glm::vec3 c = normal * 0.5f + 0.5f;
+    return {to_byte(c.x), to_byte(c.y), to_byte(c.z)};
+}
+
+Rgb reflection_colour(int depth, int max_depth) {
+    const float f = max_depth > 0 ? static_cast<float>(depth) / static_cast<float>(max_depth) : 0;
+    const glm::vec3 c = glm::mix(glm::vec3(0.05f, 0.05f, 0.4f), glm::vec3(1.0f, 0.9f, 0.1f), f);
+    return {to_byte(c.x), to_byte(c.y), to_byte(c.z)};
+}
+
+Rgb difference_colour(const std::uint8_t* traced, bool differs) {
+    if (differs) return {255, 0, 0};
+    return {static_cast<std::uint8_t>(traced[0] / 3), static_cast<std::uint8_t>(traced[1] / 3),
+            static_cast<std::uint8_t>(traced[2] / 3)};
+}
+
+Image item_image(const IdImage& ids) {
+    Image image(ids.width, ids.height);
+    for (std::size_t i = 0; i < ids.ids.size(); ++i) {
+        const Rgb c = id_colour(ids.ids[i]);
+        std::copy(c.begin(), c.end(), &image.rgb[i * 3]);
+    }
+    return image;
+}
+
+Image depth_image(const IdImage& ids) {
+    float nearest = std::numeric_limits<float>::max(), farthest = 0;
+    for (std::size_t i = 0; i < ids.ids.size(); ++i) {
+        if (ids.ids[i] == 0 || !std::isfinite(ids.view_depth[i]) || ids.view_depth[i] <= 0)
+            continue;
+        nearest = std::min(nearest, ids.view_depth[i]);
+        farthest = std::max(farthest, ids.view_depth[i]);
+    }
+    Image image(ids.width, ids.height);
+    if (farthest == 0) return image;
+    const float span = std::log(farthest / nearest);
+    for (std::size_t i = 0; i < ids.ids.size(); ++i) {
+        const float d = ids.view_depth[i];
+        if (ids.ids[i] == 0 || !std::isfinite(d) || d <= 0) continue;
+        const float f = span > 0 ? std::log(d / nearest) / span : 0;
+        const std::uint8_t grey = to_byte(1.0f - 0.85f * f);
+        std::fill_n(&image.rgb[i * 3], 3, grey);
+    }
+    return image;
+}
+
+} // namespace glint

@@ -1,0 +1,42 @@
+// What the preview can show (key 1–6, V cycles), and how each view colours a pixel. Item buffer
+// and depth come from the GL pass at once; the rest are traced, tile by tile (preview/refiner.h).
+#pragma once
+
+#include "trace/image.h"
+#include "trace/primary_hits.h"
+
+#include <array>
+#include <cstdint>
+#include <string_view>
+
+namespace glint {
+
+enum class View { final, items, depth, normals, difference, reflections };
+inline constexpr int kViewCount = 6;
+
+std::string_view view_name(View view); // for people: "item buffer"
+std::string_view view_key(View view);  // for --view: "items"
+// Whether the refiner traces this view (otherwise it comes whole from the item buffer).
+inline bool is_traced(View view) {
+    return view != View::items && view != View::depth;
+}
+
+using Rgb = std::array<std::uint8_t, 3>;
+
+// A distinct bright colour per object id (index + 1); black for 0, the background.
+Rgb id_colour(std::uint32_t id);
+// A unit normal's components mapped from [−1, 1] to [0, 255].
+Rgb normal_colour(glm::vec3 normal);
+// Reflection depth 0 (dark blue) … max_depth (yellow) along one ramp.
+Rgb reflection_colour(int depth, int max_depth);
+// The traced colour darkened to a third, or red where the hybrid and the ray primary hits name
+// different objects.
+Rgb difference_colour(const std::uint8_t* traced, bool differs);
+
+// The item buffer's ids in false colour.
+Image item_image(const IdImage& ids);
+// The item buffer's view depth, near bright, far dark, on a log scale between the nearest and
+// farthest drawn depths; nothing drawn is black.
+Image depth_image(const IdImage& ids);
+
+} // namespace glint
