@@ -210,6 +210,10 @@ void Preview::on_key(int key) {
         if (key < GLFW_KEY_1 || key >= GLFW_KEY_1 + kViewCount) return;
         view_ = static_cast<View>(key - GLFW_KEY_1);
     }
+    // The difference view needs every camera ray cast beside the resolve: only traced for it.
+    if (view_ == View::difference && frame_.mode == Mode::hybrid && job_ &&
+        !job_->compares_with_ray())
+        dirty_ = true;
     show_base(); // a new view
     update_title(true);
 }
@@ -258,7 +262,7 @@ void Preview::restart() {
     flat_ = std::move(drawn.flat);
     ids_ = std::make_shared<const IdImage>(std::move(drawn.ids));
     job_ = std::make_shared<RefineJob>(world, frame_.mode == Mode::hybrid ? ids_ : nullptr,
-                                       frame_.resolve);
+                                       frame_.resolve, view_ == View::difference);
     refiner_.start(job_);
     show_base();
     dirty_ = false;

@@ -6,8 +6,9 @@
 namespace glint {
 
 RefineJob::RefineJob(std::shared_ptr<const World> world, std::shared_ptr<const IdImage> ids,
-                     Resolve resolve)
-    : world_(std::move(world)), ids_(std::move(ids)), resolve_(resolve) {
+                     Resolve resolve, bool compare_with_ray)
+    : world_(std::move(world)), ids_(std::move(ids)), resolve_(resolve),
+      compare_with_ray_(compare_with_ray && ids_) {
     const int width = world_->camera().width(), height = world_->camera().height();
     final_ = normals_ = difference_ = reflections_ = Image(width, height);
     tiles_x_ = (width + kTileSize - 1) / kTileSize;
@@ -67,8 +68,9 @@ void RefineJob::trace_tile(const TileRect& rect) {
     for (int y = rect.y0; y < rect.y1; ++y) {
         for (int x = rect.x0; x < rect.x1; ++x) {
             const Ray ray = camera.ray(x, y);
-            const Hit by_ray = world.intersect(ray);
-            const Hit hit = ids_ ? resolve_pixel(world, *ids_, resolve_, x, y, stats) : by_ray;
+            const Hit hit =
+                ids_ ? resolve_pixel(world, *ids_, resolve_, x, y, stats) : world.intersect(ray);
+            const Hit by_ray = compare_with_ray_ ? world.intersect(ray) : hit;
             RayCounts pixel;
             ++pixel.primary;
             Real omitted = 0;

@@ -24,10 +24,13 @@ struct TileRect {
 class RefineJob {
   public:
     // `ids`: the item buffer for hybrid resolve; null traces every primary ray (ray mode).
+    // `compare_with_ray`: also cast every camera ray in hybrid mode, for the difference view
+    // (otherwise that view shows no difference and no ray is spent on it).
     RefineJob(std::shared_ptr<const World> world, std::shared_ptr<const IdImage> ids,
-              Resolve resolve);
+              Resolve resolve, bool compare_with_ray = false);
 
     const World& world() const { return *world_; }
+    bool compares_with_ray() const { return compare_with_ray_; }
     int width() const { return final_.width; }
     int height() const { return final_.height; }
 
@@ -54,6 +57,7 @@ class RefineJob {
     std::shared_ptr<const World> world_;
     std::shared_ptr<const IdImage> ids_;
     Resolve resolve_;
+    bool compare_with_ray_;
     Image final_, normals_, difference_, reflections_;
     int tiles_x_;
     std::vector<int> order_; // tile indices, nearest the image centre first

@@ -77,6 +77,29 @@ INSTANTIATE_TEST_SUITE_P(ShippedScenes, RefinerTest,
                                            "primitives"),
                          [](const auto& info) { return info.param; });
 
+// The difference view: with the comparison on, pixels whose resolved object is not the ray's are
+// counted and shown red; without it no camera ray is cast and nothing differs. The id image is
+// wrong on purpose (shifted by 9 columns) and trusted, so the resolve keeps its mistakes.
+TEST(Refiner, TheDifferenceViewFindsWhereHybridAndRayDisagreeOnlyWhenAskedTo) {
+    const auto world = std::make_shared<const World>(shipped("default", 120, 90));
+    auto shifted = std::make_shared<IdImage>(*ids_by_ray(*world));
+    for (int y = 0; y < 90; ++y)
+        std::rotate(shifted->ids.begin() + y * 120, shifted->ids.begin() + y * 120 + 9,
+                    shifted->ids.begin() + (y + 1) * 120);
+    auto compared = std::make_shared<RefineJob>(world, shifted, Resolve::trust, true);
+    run_to_completion(compared, 2);
+    EXPECT_GT(compared->differing_pixels(), 100u);
+    const Image& difference = compared->traced(View::difference);
+    std::size_t red = 0;
+    for (std::size_t i = 0; i < difference.rgb.size(); i += 3)
+        red += difference.rgb[i] == 255 && difference.rgb[i + 1] == 0 && difference.rgb[i + 2] == 0;
+    EXPECT_EQ(red, compared->differing_pixels());
+    auto plain = std::make_shared<RefineJob>(world, shifted, Resolve::trust);
+    run_to_completion(plain, 2);
+    EXPECT_EQ(plain->differing_pixels(), 0u);
+    EXPECT_EQ(plain->traced(View::final).rgb, compared->traced(View::final).rgb);
+}
+
 TEST(Refiner, TilesCoverTheImageOnceAndACancelledJobTracesNothing) {
     const auto world = std::make_shared<const World>(shipped("default", 100, 70));
     RefineJob job(world, nullptr, Resolve::exact);
