@@ -157,6 +157,25 @@ TEST_P(AccelTest, RendersAreByteIdenticalToTheListForAVeryElongatedScene) {
               render(World(scene, AccelKind::list)).image.rgb);
 }
 
+TEST_P(AccelTest, RendersAreByteIdenticalToTheListForAnObjectThinnerThanFloatResolves) {
+    // Found by fuzz/scene_fuzzer.cpp (fuzz/seeds/scene/flat-cone.json): a cone squashed to 1e-8
+    // at 8 units from the eye, thinner than float's spacing there, so its object-space rays are
+    // noise and it reported hits far outside its own box. The list tests that box first, the
+    // hierarchies only larger ones, so their images differed. Hits now count only inside the
+    // object's bounds, for every structure.
+    Scene scene = parse_scene(R"({"camera": {"eye": [0, 1, 8], "look_at": [0, 0, 0]},
+        "lights": [{"position": [4, 6, 5]}], "objects": [
+        {"shape": "cone", "transform": [{"scale": [0.3, 1.028e-8, 0.3]},
+         {"rotate": {"axis": [1, 1, 0], "degrees": 51}}, {"translate": [1, -2, -0.3]}]},
+        {"shape": "sphere", "transform": [{"scale": 0.3}, {"translate": [-2, -2, 0]}]},
+        {"shape": "box", "transform": [{"scale": 0.3}, {"translate": [2, 0, -1.6]}]},
+        {"shape": "plane", "transform": [{"translate": [0, -2.5, 0]}]}]})",
+                              "flat-cone.json");
+    scene.camera.width = 48, scene.camera.height = 36;
+    EXPECT_EQ(render(World(scene, GetParam())).image.rgb,
+              render(World(scene, AccelKind::list)).image.rgb);
+}
+
 TEST_P(AccelTest, HandlesEmptySingleAndDegenerateSets) {
     Scene scene =
         parse_scene(R"({"camera": {"eye": [0, 0, 0], "look_at": [0, 0, -1]}})", "empty.json");

@@ -49,6 +49,20 @@ struct SurfacePoint {
     Vec3 spawn() const { return position + offset * normal; }
 };
 
+// A query's SlabRay, made on first use: only queries that find a hit pay its divisions.
+class LazySlab {
+  public:
+    explicit LazySlab(const Ray& ray) : ray_(ray) {}
+    const SlabRay& get() const {
+        if (!slab_) slab_.emplace(ray_);
+        return *slab_;
+    }
+
+  private:
+    const Ray& ray_;
+    mutable std::optional<SlabRay> slab_;
+};
+
 // Below this many bounded objects, testing each one's box beats any hierarchy: the default
 // structure is then the plain list (model only what the scene needs).
 inline constexpr std::size_t kListBelow = 16;
@@ -86,9 +100,15 @@ class World {
     TraversalCounters traversal_counts() const { return counters_.combine(std::plus<>()); }
 
   private:
+    // The object's first hit in (0, t_max), counted only if the ray meets the object's box in
+    // that interval (`box_tested`: the structure has checked that already; `slab`: the ray's).
     template <class Counters>
-    ShapeHit intersect_object(const Object& object, const Ray& world_ray, Real t_max,
-                              Counters& counters) const;
+    ShapeHit intersect_object(const Object& object, const Ray& world_ray, const LazySlab& slab,
+                              Real t_max, bool box_tested, Counters& counters) const;
+    // The same without the box check: the shape's own intersection routine.
+    template <class Counters>
+    ShapeHit intersect_shape(const Object& object, const Ray& world_ray, Real t_max,
+                             Counters& counters) const;
     template <class Counters>
     Hit closest(const Ray& ray, Real t_max, std::uint32_t skip, Counters& counters) const;
     template <class Counters>
