@@ -29,7 +29,6 @@ class RefineJob {
     RefineJob(std::shared_ptr<const World> world, std::shared_ptr<const IdImage> ids,
               Resolve resolve, bool compare_with_ray = false);
 
-    const World& world() const { return *world_; }
     bool compares_with_ray() const { return compare_with_ray_; }
     int width() const { return final_.width; }
     int height() const { return final_.height; }
