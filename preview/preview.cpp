@@ -6,6 +6,7 @@
 
 #include "raster/item_buffer.h"
 #include "raster/window.h"
+#include "trace/image_metrics.h"
 #include "trace/scene_loader.h"
 
 #include <glad/gl.h>
@@ -281,7 +282,8 @@ void Preview::show_base() {
     glPixelStorei(GL_UNPACK_SKIP_PIXELS, 0);
     glPixelStorei(GL_UNPACK_SKIP_ROWS, 0);
     const Image* base = &flat_;
-    if (view_ == View::items) derived_ = item_image(*ids_), base = &derived_;
+    if (view_ == View::items)
+        derived_ = false_colour(ids_->ids, ids_->width, ids_->height), base = &derived_;
     if (view_ == View::depth) derived_ = depth_image(*ids_), base = &derived_;
     if (width != texture_width_ || height != texture_height_) {
         glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, width, height, 0, GL_RGB, GL_UNSIGNED_BYTE,

@@ -30,19 +30,6 @@ std::string_view view_key(View view) {
     return keys[static_cast<int>(view)];
 }
 
-Rgb id_colour(std::uint32_t id) {
-    if (id == 0) return {0, 0, 0};
-    // Golden-ratio hues: neighbouring ids get far-apart colours.
-    const float hue = std::fmod(static_cast<float>(id) * 0.618034f, 1.0f) * 6.0f;
-    const float f = hue - std::floor(hue);
-    const int sector = static_cast<int>(hue);
-    const float lo = 0.25f, hi = 1.0f, rise = lo + (hi - lo) * f, fall = hi - (hi - lo) * f;
-    const float rgb[6][3] = {{hi, rise, lo}, {fall, hi, lo}, {lo, hi, rise},
-                             {lo, fall, hi}, {rise, lo, hi}, {hi, lo, fall}};
-    const float* c = rgb[std::clamp(sector, 0, 5)];
-    return {to_byte(c[0]), to_byte(c[1]), to_byte(c[2])};
-}
-
 Rgb normal_colour(glm::vec3 normal) {
     const glm::vec3 c = normal * 0.5f + 0.5f;
     return {to_byte(c.x), to_byte(c.y), to_byte(c.z)};
@@ -58,15 +45,6 @@ Rgb difference_colour(const std::uint8_t* traced, bool differs) {
     if (differs) return {255, 0, 0};
     return {static_cast<std::uint8_t>(traced[0] / 3), static_cast<std::uint8_t>(traced[1] / 3),
             static_cast<std::uint8_t>(traced[2] / 3)};
-}
-
-Image item_image(const IdImage& ids) {
-    Image image(ids.width, ids.height);
-    for (std::size_t i = 0; i < ids.ids.size(); ++i) {
-        const Rgb c = id_colour(ids.ids[i]);
-        std::copy(c.begin(), c.end(), &image.rgb[i * 3]);
-    }
-    return image;
 }
 
 Image depth_image(const IdImage& ids) {

@@ -1,5 +1,6 @@
 // What the preview can show (key 1–6, V cycles), and how each view colours a pixel. Item buffer
-// and depth come from the GL pass at once; the rest are traced, tile by tile (preview/refiner.h).
+// (false_colour, trace/image_metrics.h, as `glint compare` draws it) and depth come from the GL
+// pass at once; the rest are traced, tile by tile (preview/refiner.h).
 #pragma once
 
 #include "trace/image.h"
@@ -23,8 +24,6 @@ inline bool is_traced(View view) {
 
 using Rgb = std::array<std::uint8_t, 3>;
 
-// A distinct bright colour per object id (index + 1); black for 0, the background.
-Rgb id_colour(std::uint32_t id);
 // A unit normal's components mapped from [−1, 1] to [0, 255].
 Rgb normal_colour(glm::vec3 normal);
 // Reflection depth 0 (dark blue) … max_depth (yellow) along one ramp.
@@ -33,8 +32,6 @@ Rgb reflection_colour(int depth, int max_depth);
 // different objects.
 Rgb difference_colour(const std::uint8_t* traced, bool differs);
 
-// The item buffer's ids in false colour.
-Image item_image(const IdImage& ids);
 // The item buffer's view depth, near bright, far dark, on a log scale between the nearest and
 // farthest drawn depths; nothing drawn is black.
 Image depth_image(const IdImage& ids);

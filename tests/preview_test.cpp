@@ -6,10 +6,12 @@
 #include "preview/refiner.h"
 #include "preview/views.h"
 
+#include "trace/image_metrics.h"
 #include "trace/render.h"
 
 #include <gtest/gtest.h>
 
+#include <numeric>
 #include <set>
 #include <thread>
 
@@ -189,9 +191,15 @@ TEST(OrbitCamera, DollyScalesTheDistanceStopsShortOfLookAtAndResetRestoresTheSce
 }
 
 TEST(Views, IdsGetDistinctColoursAndTheBackgroundBlack) {
-    EXPECT_EQ(id_colour(0), (Rgb{0, 0, 0}));
+    // The item-buffer view is `glint compare`'s false_colour.
+    std::vector<std::uint32_t> ids(65);
+    std::iota(ids.begin(), ids.end(), 0u);
+    const Image image = false_colour(ids, 65, 1);
+    EXPECT_EQ((Rgb{image.pixel(0, 0)[0], image.pixel(0, 0)[1], image.pixel(0, 0)[2]}),
+              (Rgb{0, 0, 0}));
     std::set<Rgb> colours;
-    for (std::uint32_t id = 1; id <= 64; ++id) colours.insert(id_colour(id));
+    for (int x = 1; x <= 64; ++x)
+        colours.insert({image.pixel(x, 0)[0], image.pixel(x, 0)[1], image.pixel(x, 0)[2]});
     EXPECT_EQ(colours.size(), 64u);
     EXPECT_EQ(colours.count(Rgb{0, 0, 0}), 0u);
 }
