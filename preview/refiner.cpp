@@ -76,8 +76,7 @@ void RefineJob::trace_tile(const TileRect& rect) {
             Real omitted = 0;
             const Vec3 c = shade(world, ray, hit, 0, 1, pixel, omitted);
             std::uint8_t* p = final_.pixel(x, y);
-            p[0] = to_byte(static_cast<float>(c.x)), p[1] = to_byte(static_cast<float>(c.y)),
-            p[2] = to_byte(static_cast<float>(c.z));
+            store_colour(c, p);
             // Reflection is perfect: a pixel's reflection rays form one chain, so their number
             // is its reflection depth.
             const Rgb depth = reflection_colour(static_cast<int>(pixel.reflection), max_depth);
@@ -96,10 +95,7 @@ void RefineJob::trace_tile(const TileRect& rect) {
     }
     const std::lock_guard lock(totals_mutex_);
     rays_ += counts;
-    stats_.exact_intersections += stats.exact_intersections;
-    stats_.fallbacks += stats.fallbacks;
-    stats_.corrected += stats.corrected;
-    stats_.edges += stats.edges;
+    stats_ += stats;
     differing_ += differing;
 }
 

@@ -92,10 +92,7 @@ std::vector<Hit> primary_hits_from_ids(const World& world, const IdImage& ids, R
                 hits[static_cast<std::size_t>(y) * width + x] =
                     resolve_pixel(world, ids, resolve, x, y, local);
         const std::lock_guard lock(stats_mutex);
-        stats.exact_intersections += local.exact_intersections;
-        stats.fallbacks += local.fallbacks;
-        stats.corrected += local.corrected;
-        stats.edges += local.edges;
+        stats += local;
     });
     return hits;
 }

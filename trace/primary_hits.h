@@ -27,6 +27,12 @@ struct PrimaryStats {
     std::uint64_t fallbacks = 0; // the named object was missed: the pixel was fully traced
     std::uint64_t corrected = 0; // exact mode found a nearer object than the named one
     std::uint64_t edges = 0;     // exact mode: on an id boundary, so traced in full
+
+    PrimaryStats& operator+=(const PrimaryStats& other) {
+        exact_intersections += other.exact_intersections, fallbacks += other.fallbacks;
+        corrected += other.corrected, edges += other.edges;
+        return *this;
+    }
 };
 
 // Casts the camera ray of every pixel.

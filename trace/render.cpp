@@ -23,9 +23,7 @@ RenderResult shade_image(const World& world, const std::vector<Hit>& primary,
                 Real omitted = 0;
                 const Vec3 c = shade(world, camera.ray(x, y), primary[i], 0, 1, counts, omitted);
                 result.omitted_weight[i] = static_cast<float>(omitted);
-                std::uint8_t* p = result.image.pixel(x, y);
-                p[0] = to_byte(static_cast<float>(c.x)), p[1] = to_byte(static_cast<float>(c.y)),
-                p[2] = to_byte(static_cast<float>(c.z));
+                store_colour(c, result.image.pixel(x, y));
             }
         }
         const std::lock_guard lock(counts_mutex); // integer sums: order does not matter

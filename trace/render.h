@@ -9,6 +9,11 @@
 
 namespace glint::inline GLINT_PRECISION {
 
+// Writes a shaded colour as a pixel's three bytes (trace/image.h's to_byte per channel).
+inline void store_colour(Vec3 c, std::uint8_t* pixel) {
+    for (int i = 0; i < 3; ++i) pixel[i] = to_byte(static_cast<float>(c[i]));
+}
+
 // Shades the pixels whose primary hits are given (row-major, top row first).
 RenderResult shade_image(const World& world, const std::vector<Hit>& primary,
                          const TileProgress& progress = {});
