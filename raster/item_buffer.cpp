@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <map>
+#include <tuple>
 
 namespace glint {
 
@@ -276,8 +277,9 @@ void ItemBuffer::upload(const World& world, RasterMode mode, int tessellation) {
     gl.geometries.clear();
     gl.items.clear();
     deviations_.assign(world.objects().size(), 0.0f);
-    // One tessellation per distinct shape (cones: per top radius), shared by every object using it.
-    std::map<std::pair<ShapeKind, float>, std::pair<std::size_t, float>> shared;
+    // One tessellation per distinct shape (cones: per top radius; open or capped), shared by every
+    // object using it.
+    std::map<std::tuple<ShapeKind, float, bool>, std::pair<std::size_t, float>> shared;
     for (std::uint32_t i = 0; i < world.objects().size(); ++i) {
         const Object& o = world.objects()[i];
         if (o.shape == ShapeKind::plane) {
@@ -296,8 +298,9 @@ void ItemBuffer::upload(const World& world, RasterMode mode, int tessellation) {
                             : o.shape == ShapeKind::disk ? Vec3(-1.0f, -0.01f, -1.0f)
                                                          : Vec3(-r, 0.0f, -r);
             const Vec3 hi = o.shape == ShapeKind::disk ? Vec3(1.0f, 0.01f, 1.0f) : Vec3(r, 1.0f, r);
-            const auto key = std::make_pair(
-                ShapeKind::box, o.shape == ShapeKind::box ? -1.0f : float(o.shape) * 1e3f + r);
+            const auto key = std::make_tuple(
+                ShapeKind::box, o.shape == ShapeKind::box ? -1.0f : float(o.shape) * 1e3f + r,
+                false);
             auto it = shared.find(key);
             if (it == shared.end()) {
                 Tessellation box = tessellate(ShapeKind::box, 0, 4);
@@ -310,10 +313,11 @@ void ItemBuffer::upload(const World& world, RasterMode mode, int tessellation) {
             gl.items.push_back({i, it->second.first, true, false});
             continue;
         }
-        const auto key = std::make_pair(o.shape, o.shape == ShapeKind::cone ? o.top_radius : 0.0f);
+        const auto key =
+            std::make_tuple(o.shape, o.shape == ShapeKind::cone ? o.top_radius : 0.0f, o.open);
         auto it = shared.find(key);
         if (it == shared.end()) {
-            const Tessellation t = tessellate(o.shape, o.top_radius, tessellation);
+            const Tessellation t = tessellate(o.shape, o.top_radius, tessellation, o.open);
             it = shared
                      .emplace(key, std::make_pair(gl.add_geometry(t.vertices, t.triangles),
                                                   t.max_deviation))
@@ -376,6 +380,7 @@ ItemBufferResult ItemBuffer::draw(const World& world, bool flat_preview) {
             glUniformMatrix4fv(uniform("world_to_object"), 1, GL_FALSE, glm::value_ptr(inverse));
             glUniform1i(uniform("shape"), static_cast<int>(o.shape));
             glUniform1f(uniform("top_radius"), o.top_radius);
+            glUniform1i(uniform("open"), o.open);
             glUniform3fv(uniform("forward"), 1, glm::value_ptr(camera.forward()));
             const Vec3 right = camera.right_scaled(), up = camera.up_scaled();
             glUniform3fv(uniform("right_scaled"), 1, glm::value_ptr(right));

@@ -79,7 +79,7 @@ Tessellation sphere(int n) {
 
 } // namespace
 
-Tessellation tessellate(ShapeKind shape, float top_radius, int level) {
+Tessellation tessellate(ShapeKind shape, float top_radius, int level, bool open) {
     const int n = std::clamp(level, kMinTessellation, kMaxTessellation);
     // Circumscribed polygons with float rounding allowed for.
     const double outward = 1 / std::cos(kPi / n) * (1 + 1e-6);
@@ -108,12 +108,12 @@ Tessellation tessellate(ShapeKind shape, float top_radius, int level) {
             const auto upper = ring(b, n, 1, top * (1 + 1e-6));
             for (int i = 0; i < n; ++i)
                 b.quad(bottom[i], upper[i], upper[(i + 1) % n], bottom[(i + 1) % n]);
-            cap(b, upper, 1);
+            if (!open) cap(b, upper, 1);
         } else {
             const std::uint32_t apex = b.vertex({0, 1, 0});
             for (int i = 0; i < n; ++i) b.triangle(bottom[i], apex, bottom[(i + 1) % n]);
         }
-        cap(b, bottom, 0);
+        if (!open) cap(b, bottom, 0);
         b.mesh.max_deviation = static_cast<float>((outward - 1) * std::max(1.0, top));
         return b.mesh;
     }

@@ -19,8 +19,8 @@ struct Tessellation {
 };
 
 // `level` segments around each curved outline (the sphere gets level/2 latitude bands). For
-// sphere, box, disk, cylinder and cone; planes are drawn analytically, triangles and meshes as
-// they are.
-Tessellation tessellate(ShapeKind shape, float top_radius, int level);
+// sphere, box, disk, cylinder and cone (`open`: without their caps); planes are drawn
+// analytically, triangles and meshes as they are.
+Tessellation tessellate(ShapeKind shape, float top_radius, int level, bool open = false);
 
 } // namespace glint

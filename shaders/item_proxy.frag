@@ -5,6 +5,7 @@
 uniform uint object_id;
 uniform int shape; // ShapeKind: 0 sphere, 1 plane, 2 box, 3 disk, 4 cylinder, 5 cone
 uniform float top_radius;
+uniform bool open; // cylinders and cones without caps
 uniform mat4 world_to_object; // camera-relative world → object (M⁻¹)
 uniform vec3 forward;         // unit viewing direction
 uniform vec3 right_scaled;    // right · tan(fov_y/2) · aspect
@@ -80,8 +81,9 @@ void main() {
     else if (shape == 3) t = disk(o, dl, 1.0, 0.0);
     else {
         float k = shape == 4 ? 0.0 : 1.0 - top_radius;
-        t = min(side(o, dl, k), disk(o, dl, 1.0, 0.0));
-        if (shape == 4 || top_radius > 0.0) t = min(t, disk(o, dl, 1.0 - k, 1.0));
+        t = side(o, dl, k);
+        if (!open) t = min(t, disk(o, dl, 1.0, 0.0));
+        if (!open && (shape == 4 || top_radius > 0.0)) t = min(t, disk(o, dl, 1.0 - k, 1.0));
     }
     if (flat_preview) { // derivatives before the discard, over the whole 2×2 quad
         vec3 p = t < kInfinity ? t * d : vec3(0.0);

@@ -110,6 +110,8 @@ INSTANTIATE_TEST_SUITE_P(EveryClass, BadSceneTest, ::testing::Values(
     BadScene{"depth beyond limit", R"({"render": {"max_depth": 1000000000}})", "/render/max_depth: must be between 0 and 64"},
     BadScene{"unknown light type", R"({"lights": [{"type": "spot", "position": [0, 0, 0]}]})", "/lights/0/type: unknown light type 'spot'"},
     BadScene{"light without position", R"({"lights": [{}]})", "/lights/0: a light needs a position"},
+    BadScene{"open sphere", R"({"objects": [{"shape": "sphere", "open": true}]})", "/objects/0/open: only cylinders and cones can be open"},
+    BadScene{"open as a number", R"({"objects": [{"shape": "cone", "open": 1}]})", "/objects/0/open: expected true or false, got a number"},
     BadScene{"top_radius on a sphere", R"({"objects": [{"shape": "sphere", "top_radius": 0.5}]})", "/objects/0/top_radius: only cones"},
     BadScene{"negative top_radius", R"({"objects": [{"shape": "cone", "top_radius": -1}]})", "/objects/0/top_radius: must be between 0"},
     BadScene{"index out of range", R"({"objects": [{"shape": "mesh", "vertices": [[0,0,0],[1,0,0],[0,1,0]], "indices": [0, 1, 3]}]})",

@@ -92,6 +92,24 @@ TEST(Cylinder, HitsTheSideAndBothCaps) {
     EXPECT_NEAR(intersect_cylinder({{0, 0.5f, 0}, {0, 0, 1}}, kInfinity).t, 1.0f, kT);
 }
 
+TEST(Cylinder, OpenHasNoCapsSoRaysThroughTheEndsSeeTheInsideWall) {
+    // Down the axis: through both open ends, nothing.
+    EXPECT_FALSE(intersect_cylinder({{0.2f, 5, 0}, {0, -1, 0}}, kInfinity, true).found());
+    // Slanting in through the top opening: the far wall from inside (x = −1 at y = 0.5).
+    const ShapeHit inner = intersect_cylinder({{0, 1.5f, 0}, {-1, -1, 0}}, kInfinity, true);
+    EXPECT_NEAR(inner.t, 1.0f, kT);
+    EXPECT_EQ(inner.part, 0u);
+    // The side is unchanged.
+    EXPECT_NEAR(intersect_cylinder({{5, 0.5f, 0}, {-1, 0, 0}}, kInfinity, true).t, 4.0f, kT);
+}
+
+TEST(Cone, OpenTruncatedConeHasOnlyItsSlantedSide) {
+    // Radius 1 at y = 0 to 0.5 at y = 1; along the axis the capped one is hit at the base.
+    EXPECT_TRUE(intersect_cone({{0, -2, 0}, {0, 1, 0}}, 0.5f, kInfinity).found());
+    EXPECT_FALSE(intersect_cone({{0, -2, 0}, {0, 1, 0}}, 0.5f, kInfinity, true).found());
+    EXPECT_NEAR(intersect_cone({{5, 0.5f, 0}, {-1, 0, 0}}, 0.5f, kInfinity, true).t, 4.25f, kT);
+}
+
 TEST(Cone, RadiusShrinksLinearlyToTheTopRadius) {
     // r(y) = 1 − y·(1 − top): at y = 0.5, r = 0.5 (top 0) or 0.75 (top 0.5).
     EXPECT_NEAR(intersect_cone({{5, 0.5f, 0}, {-1, 0, 0}}, 0.0f, kInfinity).t, 4.5f, kT);

@@ -65,6 +65,7 @@ struct SceneObject {
     std::uint32_t material = 0;
     DMat4 transform{1.0};    // object → world, composed from the scene's transform list
     float top_radius = 0.0f; // cones only
+    bool open = false;       // cylinders and cones: no end caps (NFF's `c`)
     std::uint32_t mesh = 0;  // index into Scene::meshes for triangles and meshes
 };
 

@@ -102,6 +102,12 @@ class Loader {
         return node.value.get<std::string>();
     }
 
+    bool boolean(const Node& node) const {
+        if (!node.value.is_boolean())
+            fail(node, "expected true or false, got " + type_name(node.value));
+        return node.value.get<bool>();
+    }
+
     double number(const Node& node) const {
         if (!node.value.is_number()) fail(node, "expected a number, got " + type_name(node.value));
         const double v = node.value.get<double>();
@@ -317,8 +323,8 @@ class Loader {
     }
 
     void object(const Node& node, Scene& scene) const {
-        expect_object(
-            node, {"shape", "material", "transform", "top_radius", "vertices", "indices", "file"});
+        expect_object(node, {"shape", "material", "transform", "top_radius", "open", "vertices",
+                             "indices", "file"});
         if (!has(node, "shape")) fail(node, "an object needs a shape (" + join(kShapeNames) + ")");
         const Node shape_node = node.child("shape");
         const std::string shape = string(shape_node);
@@ -329,6 +335,8 @@ class Loader {
         const bool triangles = o.shape == ShapeKind::triangle || o.shape == ShapeKind::mesh;
         if (has(node, "top_radius") && o.shape != ShapeKind::cone)
             fail(node.child("top_radius"), "only cones have a top_radius");
+        if (has(node, "open") && o.shape != ShapeKind::cylinder && o.shape != ShapeKind::cone)
+            fail(node.child("open"), "only cylinders and cones can be open");
         if (has(node, "vertices") && !triangles)
             fail(node.child("vertices"), "only triangles and meshes have vertices");
         if (has(node, "indices") && o.shape != ShapeKind::mesh)
@@ -355,6 +363,7 @@ class Loader {
         if (has(node, "transform")) o.transform = transform(node.child("transform"));
         if (has(node, "top_radius"))
             o.top_radius = static_cast<float>(number_in(node.child("top_radius"), 0, 1e6));
+        if (has(node, "open")) o.open = boolean(node.child("open"));
         if (triangles) {
             o.mesh = static_cast<std::uint32_t>(scene.meshes.size());
             scene.meshes.push_back(mesh(node, o.shape));

@@ -35,7 +35,8 @@ World::World(const Scene& scene, std::optional<AccelKind> accel)
     for (const SceneObject& o : scene.objects) {
         const DMat4 m = to_camera * o.transform;
         const bool bounded = o.shape != ShapeKind::plane;
-        objects_.push_back({o.shape, make_transform(m), o.material, o.top_radius, o.mesh, bounded,
+        objects_.push_back({o.shape, make_transform(m), o.material, o.top_radius, o.open, o.mesh,
+                            bounded,
                             bounded ? world_bounds(*unit_box(o, scene.meshes), m) : Bounds{}});
     }
     for (const PointLight& light : scene.lights)
@@ -88,9 +89,9 @@ ShapeHit World::intersect_shape(const Object& object, const Ray& world_ray, Real
     case ShapeKind::disk:
         return intersect_disk(ray, t_max);
     case ShapeKind::cylinder:
-        return intersect_cylinder(ray, t_max);
+        return intersect_cylinder(ray, t_max, object.open);
     case ShapeKind::cone:
-        return intersect_cone(ray, object.top_radius, t_max);
+        return intersect_cone(ray, object.top_radius, t_max, object.open);
     case ShapeKind::triangle:
     case ShapeKind::mesh:
         return intersect_mesh(meshes_[object.mesh], ray, t_max, counters);

@@ -21,6 +21,7 @@ struct Object {
     Transform transform; // object → camera-relative world
     std::uint32_t material;
     Real top_radius;
+    bool open; // cylinders and cones without caps
     std::uint32_t mesh;
     bool bounded;  // false for planes
     Bounds bounds; // camera-relative world bounds, conservative

@@ -1,5 +1,6 @@
-// The capped cone of radius r(y) = 1 − y·(1 − top_radius), 0 ≤ y ≤ 1: part 0 the slanted side,
-// 1 the base disk at y = 0, 2 the top disk at y = 1 (only when top_radius > 0).
+// The cone of radius r(y) = 1 − y·(1 − top_radius), 0 ≤ y ≤ 1: part 0 the slanted side, 1 the
+// base disk at y = 0, 2 the top disk at y = 1 (only when top_radius > 0). An open cone (NFF's `c`,
+// a truncated cone of any two radii) has no disks.
 #pragma once
 
 #include "trace/shapes/cylinder.h"
@@ -8,7 +9,7 @@
 
 namespace glint::inline GLINT_PRECISION {
 
-inline ShapeHit intersect_cone(const Ray& ray, Real top_radius, Real t_max) {
+inline ShapeHit intersect_cone(const Ray& ray, Real top_radius, Real t_max, bool open = false) {
     // x² + z² = (1 − k·y)², k = 1 − top_radius. The quadratic has no closest-approach form like
     // the sphere's, so it is solved in double: cones are few and b² − ac then keeps its digits.
     const double k = 1.0 - top_radius;
@@ -34,6 +35,7 @@ inline ShapeHit intersect_cone(const Ray& ray, Real top_radius, Real t_max) {
             side(q / a);
         }
     }
+    if (open) return best;
     best = closer(best, intersect_cap(ray, 0.0_r, 1.0_r, t_max, 1));
     if (top_radius > 0) best = closer(best, intersect_cap(ray, 1.0_r, top_radius, t_max, 2));
     return best;

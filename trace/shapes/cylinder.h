@@ -1,5 +1,5 @@
-// The capped cylinder x²+z² = 1, 0 ≤ y ≤ 1: part 0 the side (radial normal), 1 the cap at
-// y = 0 (normal −y), 2 the cap at y = 1 (normal +y).
+// The cylinder x²+z² = 1, 0 ≤ y ≤ 1: part 0 the side (radial normal), 1 the cap at y = 0
+// (normal −y), 2 the cap at y = 1 (normal +y). An open cylinder (NFF's `c`) has no caps.
 #pragma once
 
 #include "trace/shapes/shape.h"
@@ -19,7 +19,7 @@ inline ShapeHit intersect_cap(const Ray& ray, Real height, Real radius, Real t_m
     return candidate(t, t_max, part);
 }
 
-inline ShapeHit intersect_cylinder(const Ray& ray, Real t_max) {
+inline ShapeHit intersect_cylinder(const Ray& ray, Real t_max, bool open = false) {
     const Vec3 o = ray.origin;
     const Vec3 d = ray.direction;
     ShapeHit best;
@@ -39,6 +39,7 @@ inline ShapeHit intersect_cylinder(const Ray& ray, Real t_max) {
             }
         }
     }
+    if (open) return best;
     best = closer(best, intersect_cap(ray, 0.0_r, 1.0_r, t_max, 1));
     return closer(best, intersect_cap(ray, 1.0_r, 1.0_r, t_max, 2));
 }
