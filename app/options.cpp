@@ -41,6 +41,8 @@ fs::path SceneOptions::scene_path() const {
 
 Scene SceneOptions::load() const {
     Scene loaded = load_scene(scene_path());
+    for (const std::string& note : loaded.notes)
+        std::cerr << "glint: note: " << scene_path().string() << ": " << note << '\n';
     if (!size.empty())
         std::tie(loaded.camera.width, loaded.camera.height) = parse_size(size, "--size");
     if (max_depth_option->count()) loaded.render.max_depth = max_depth;

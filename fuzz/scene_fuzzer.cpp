@@ -1,50 +1,7 @@
-// libFuzzer target: any bytes as a JSON scene (trace/scene_loader.h). A bad scene must end in a
-// SceneError whose message starts with the file's name; a scene that loads must render (shrunk
-// to a thumbnail) without crashing or hanging, and to the same image with every acceleration
-// structure, which all answer the same queries bit for bit (tests/accel_test.cpp).
-#include "trace/accel/accel.h"
-#include "trace/render.h"
-#include "trace/scene_loader.h"
-
-#include <tbb/task_arena.h>
-
-#include <algorithm>
-#include <cstdint>
-#include <cstdio>
-#include <cstdlib>
-#include <string>
-#include <string_view>
+// libFuzzer target: any bytes as a JSON scene (trace/scene_loader.h), checked as every loader is
+// (fuzz/render_check.h).
+#include "fuzz/render_check.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    using namespace glint;
-    Scene scene;
-    try {
-        scene = parse_scene(std::string(reinterpret_cast<const char*>(data), size), "fuzz.json");
-    } catch (const SceneError& e) {
-        if (!std::string_view(e.what()).starts_with("fuzz.json:")) {
-            std::fprintf(stderr, "error message does not name the file: %s\n", e.what());
-            std::abort();
-        }
-        return 0;
-    }
-    // A thumbnail: the image size is not what is being fuzzed, and every pixel costs time.
-    scene.camera.width = std::min(scene.camera.width, 12);
-    scene.camera.height = std::min(scene.camera.height, 9);
-
-    tbb::task_arena one_thread(1);
-    one_thread.execute([&] {
-        Image first;
-        for (const std::string_view name : kAccelNames) {
-            const World world(scene, accel_from_name(name));
-            const Image image = render(world).image;
-            if (name == kAccelNames[0]) {
-                first = image;
-            } else if (image.rgb != first.rgb) {
-                std::fprintf(stderr, "%s renders a different image from %s\n",
-                             std::string(name).c_str(), std::string(kAccelNames[0]).c_str());
-                std::abort();
-            }
-        }
-    });
-    return 0;
+    return glint::fuzz::check_loader(data, size, "fuzz.json", glint::parse_scene);
 }

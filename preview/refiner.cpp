@@ -82,7 +82,7 @@ void RefineJob::trace_tile(const TileRect& rect) {
             const Rgb depth = reflection_colour(static_cast<int>(pixel.reflection), max_depth);
             std::copy(depth.begin(), depth.end(), reflections_.pixel(x, y));
             const Rgb normal = hit.found()
-                                   ? normal_colour(glm::vec3(world.surface(ray, hit).normal))
+                                   ? normal_colour(glm::vec3(world.surface(ray, hit).shading))
                                    : Rgb{0, 0, 0};
             std::copy(normal.begin(), normal.end(), normals_.pixel(x, y));
             const bool differs =

@@ -239,9 +239,10 @@ TEST_P(GlTest, FlatPreviewShowsEachObjectsDiffuseColourFromTheSamePass) {
     }
 }
 
-// Every shipped scene, both raster modes, both resolve settings, against ray mode.
+// Every shipped scene and the SPD scenes in tests/data, both raster modes, both resolve settings,
+// against ray mode.
 struct SceneCase {
-    const char* scene;
+    std::string scene; // path from the source directory
     RasterMode raster;
     Resolve resolve;
 };
@@ -250,7 +251,7 @@ class HybridTest : public ::testing::TestWithParam<SceneCase> {};
 
 TEST_P(HybridTest, HybridImageAgreesWithRayImage) {
     const SceneCase c = GetParam();
-    Scene scene = load_scene(std::string(GLINT_SOURCE_DIR "/scenes/") + c.scene + ".json");
+    Scene scene = load_scene(GLINT_SOURCE_DIR "/" + c.scene);
     scene.camera.width = 400, scene.camera.height = 300;
     const World world(scene);
     FrameSettings settings{Mode::ray, GlBackend::osmesa, c.raster, kDefaultTessellation, c.resolve,
@@ -270,27 +271,43 @@ TEST_P(HybridTest, HybridImageAgreesWithRayImage) {
         // Trust is wrong only where another object's surface lies within the tessellation gap
         // (at most 0.5% of a radius at level 32) in front of the named object: along contact
         // lines. Proxies have no gap, so only float-rounding ties remain. 0.5% of pixels bounds
-        // the contact lines of these scenes at 400×300 with room to spare.
-        EXPECT_LE(diff.fraction_over_one, 5e-3) << diff.pixels_over_one << " pixels";
-        EXPECT_GE(agreement, 0.995);
+        // the contact lines of these scenes at 400×300 with room to spare, except SPD's shells:
+        // 361 spheres each sunk into the next along a spiral, so contact lines are everywhere
+        // (1.2% of pixels with mesh trust here); 2% bounds those.
+        const bool shells = c.scene.find("shells") != std::string::npos;
+        EXPECT_LE(diff.fraction_over_one, shells ? 2e-2 : 5e-3)
+            << diff.pixels_over_one << " pixels";
+        EXPECT_GE(agreement, shells ? 0.98 : 0.995);
     }
 }
 
 std::vector<SceneCase> every_scene_case() {
     std::vector<SceneCase> cases;
-    for (const char* scene : {"default", "mirrors", "transforms", "shadows", "primitives"})
+    std::vector<std::string> scenes;
+    for (const char* name : {"default", "mirrors", "transforms", "shadows", "primitives"})
+        scenes.push_back(std::string("scenes/") + name + ".json");
+    for (const char* name : {"balls-1", "gears-1", "jacks-1", "rings-1", "teapot-2", "tetra-3",
+                             "tree-3", "mount-3", "lattice-4", "shells-1"})
+        scenes.push_back(std::string("tests/data/spd/") + name + ".nff");
+    for (const std::string& scene : scenes)
         for (RasterMode raster : {RasterMode::mesh, RasterMode::proxy})
             for (Resolve resolve : {Resolve::exact, Resolve::trust})
                 cases.push_back({scene, raster, resolve});
     return cases;
 }
 
+std::string scene_case_name(const ::testing::TestParamInfo<SceneCase>& info) {
+    const std::string& path = info.param.scene;
+    const std::size_t slash = path.rfind('/');
+    std::string stem = path.substr(slash + 1, path.rfind('.') - slash - 1);
+    for (char& ch : stem)
+        if (ch == '-') ch = '_';
+    return stem + "_" + std::string(raster_mode_name(info.param.raster)) +
+           (info.param.resolve == Resolve::exact ? "_exact" : "_trust");
+}
+
 INSTANTIATE_TEST_SUITE_P(ShippedScenes, HybridTest, ::testing::ValuesIn(every_scene_case()),
-                         [](const auto& info) {
-                             return std::string(info.param.scene) + "_" +
-                                    std::string(raster_mode_name(info.param.raster)) +
-                                    (info.param.resolve == Resolve::exact ? "_exact" : "_trust");
-                         });
+                         scene_case_name);
 
 } // namespace
 } // namespace glint

@@ -58,6 +58,8 @@ struct Material {
 struct TriangleMesh {
     std::vector<glm::vec3> vertices;
     std::vector<glm::uvec3> triangles; // indices into vertices
+    // One unit shading normal per vertex (smooth shading), or none (flat: the facet normal).
+    std::vector<glm::vec3> normals;
 };
 
 struct SceneObject {
@@ -84,6 +86,8 @@ struct Scene {
     std::vector<SceneObject> objects;
     std::vector<TriangleMesh> meshes;
     RenderSettings render;
+    // What the loader left out or changed, for the user to read (NFF's transmission, ...).
+    std::vector<std::string> notes;
 };
 
 // Building blocks of a scene's transform list (column vectors: p' = M·p).

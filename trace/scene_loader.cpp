@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -484,7 +485,9 @@ Scene load_scene(const std::filesystem::path& path) {
             throw SceneError(name + ": scene file is larger than allowed" + limit);
     }
     if (in.bad()) throw SceneError(name + ": cannot read scene file: " + std::strerror(errno));
-    return parse_scene(text, name);
+    std::string extension = path.extension().string();
+    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return extension == ".nff" ? parse_nff(text, name) : parse_scene(text, name);
 }
 
 } // namespace glint

@@ -30,9 +30,13 @@ inline constexpr std::size_t kMaxLights = 4096;
 // The deepest scene is 6 levels (/objects/i/transform/j/matrix/row); nothing needs more.
 inline constexpr int kMaxJsonDepth = 32;
 
+// JSON, or NFF when the name ends in .nff (any case).
 Scene load_scene(const std::filesystem::path& path);
 
 // `name` stands for the file in error messages.
 Scene parse_scene(const std::string& text, const std::string& name);
+
+// An NFF scene (Standard Procedural Databases; docs/SCENES.md). Errors name `name` and a line.
+Scene parse_nff(const std::string& text, const std::string& name);
 
 } // namespace glint

@@ -9,7 +9,7 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, int depth, Real w
     if (!hit.found()) return world.background();
     const SurfacePoint surface = world.surface(ray, hit);
     const Phong& m = world.material(hit.object);
-    const Vec3 n = surface.normal;
+    const Vec3 n = surface.shading;
     const Vec3 v = -glm::normalize(ray.direction);
     const Vec3 origin = surface.spawn();
 

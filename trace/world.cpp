@@ -198,6 +198,15 @@ SurfacePoint World::surface(const Ray& ray, const Hit& hit) const {
     Vec3 normal = m.normal_to_world(s.normal);
     const bool from_inside = glm::dot(normal, ray.direction) > 0;
     if (from_inside) normal = -normal;
+    // A vertex normal is flipped with the facet, so that it points to the same side; where
+    // interpolation cancels it out (opposed vertex normals), the facet normal stands in.
+    Vec3 shading = normal;
+    if (s.shading != Vec3(0.0_r)) {
+        const Vec3 smooth = m.normal_to_world(s.shading);
+        const Real length = glm::length(smooth);
+        if (length > 0 && std::isfinite(length))
+            shading = (from_inside ? -smooth : smooth) / length;
+    }
     // A convex solid lies behind the tangent plane at every surface point, and a planar shape in
     // it: a ray leaving on the normal's side cannot meet the object again, so it skips the
     // object instead of stepping off it. No offset is needed then, and none can be too large
@@ -206,7 +215,7 @@ SurfacePoint World::surface(const Ray& ray, const Hit& hit) const {
     const bool planar = object.shape == ShapeKind::plane || object.shape == ShapeKind::disk ||
                         object.shape == ShapeKind::triangle;
     if (planar || (object.shape != ShapeKind::mesh && !from_inside))
-        return {m.point_to_world(s.point), normal, 0.0_r, hit.object};
+        return {m.point_to_world(s.point), normal, shading, 0.0_r, hit.object};
     // Spawn offset (Wächter & Binder, Ray Tracing Gems ch. 6; pbrt-v4's OffsetRayOrigin): a new
     // ray from this point is intersected with this object after mapping back by M⁻¹, so it must
     // leave the object-space error box of the point: its extent along the object normal is
@@ -216,7 +225,7 @@ SurfacePoint World::surface(const Ray& ray, const Hit& hit) const {
     // for box faces) clear of its own rounding.
     const Vec3 error = m.roundtrip_error(s.point, s.error);
     const Real offset = 2.0_r * glm::dot(glm::abs(s.normal), error) / m.normal_stretch(s.normal);
-    return {m.point_to_world(s.point), normal, offset, kNoObject};
+    return {m.point_to_world(s.point), normal, shading, offset, kNoObject};
 }
 
 } // namespace glint::inline GLINT_PRECISION

@@ -14,6 +14,7 @@ namespace glint::inline GLINT_PRECISION {
 struct Mesh {
     std::vector<Vec3> vertices;
     std::vector<glm::uvec3> triangles; // indices into vertices
+    std::vector<Vec3> normals;         // per vertex, or empty (flat shading)
     Bounds bounds;                     // of the vertices, object space
     Bvh bvh;                           // over the triangles, object space
     // The three corners of each triangle side by side: one load per triangle instead of an
@@ -92,6 +93,7 @@ inline Mesh prepare_mesh(const TriangleMesh& given) {
         mesh.vertices.push_back(Vec3(v));
         mesh.bounds.extend(mesh.vertices.back());
     }
+    for (const glm::vec3& n : given.normals) mesh.normals.push_back(Vec3(n));
     mesh.corners.reserve(mesh.triangles.size());
     for (const glm::uvec3& t : mesh.triangles)
         mesh.corners.push_back({mesh.vertices[t.x], mesh.vertices[t.y], mesh.vertices[t.z]});
@@ -131,7 +133,12 @@ inline SurfaceSample mesh_surface(const Mesh& mesh, const Ray& ray, std::uint32_
     // (pbrt-v4, Triangle::InteractionFromIntersection).
     const Vec3 point = b0 * p0 + h.u * p1 + h.v * p2;
     const Vec3 error = gamma(7) * (glm::abs(b0 * p0) + glm::abs(h.u * p1) + glm::abs(h.v * p2));
-    return {point, glm::normalize(glm::cross(p1 - p0, p2 - p0)), error};
+    const Vec3 facet = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+    if (mesh.normals.empty()) return {point, facet, error};
+    // Smooth shading (Phong): the vertex normals interpolated with the hit's barycentrics.
+    const Vec3 shading =
+        b0 * mesh.normals[tri.x] + h.u * mesh.normals[tri.y] + h.v * mesh.normals[tri.z];
+    return {point, facet, error, shading};
 }
 
 } // namespace glint::inline GLINT_PRECISION

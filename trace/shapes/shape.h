@@ -19,6 +19,9 @@ struct SurfaceSample {
     Vec3 point;  // on the surface up to `error`
     Vec3 normal; // unit, outward
     Vec3 error;  // per-component bound on |point − exact surface point|
+    // What shading uses when it differs from `normal` (a mesh's interpolated vertex normals,
+    // not necessarily unit), else zero.
+    Vec3 shading{0.0_r};
 };
 
 // The nearer of two candidate hits; on equal t the first wins, keeping results deterministic.

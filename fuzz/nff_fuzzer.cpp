@@ -1,0 +1,7 @@
+// libFuzzer target: any bytes as an NFF scene (trace/nff_loader.cpp), checked as every loader is
+// (fuzz/render_check.h). Seeds: small SPD scenes and the heads of two larger ones.
+#include "fuzz/render_check.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    return glint::fuzz::check_loader(data, size, "fuzz.nff", glint::parse_nff);
+}
