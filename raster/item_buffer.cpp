@@ -83,25 +83,41 @@ struct ItemBuffer::Impl {
         GLuint vao = 0, vertices = 0, indices = 0;
         GLsizei index_count = 0;
     };
+    // Drawn one by one, with uniforms: proxies and full-screen planes.
     struct DrawItem {
         std::uint32_t object;
         std::size_t geometry; // index into geometries; unused for full-screen items
         bool proxy;           // intersect in the fragment shader
         bool full_screen;     // planes: no geometry at all
     };
+    // Every object drawn with one geometry (a mesh, or the tessellation of one shape): one
+    // instanced draw, each instance's transform, id and colour read from `instance_buffer`.
+    struct Batch {
+        std::size_t geometry;
+        std::vector<std::uint32_t> objects;
+    };
+    // One instance's attributes (item.vert, locations 1 to 10).
+    struct Instance {
+        glm::mat4 model_view_projection; // computed in double, as for single draws
+        glm::mat4 model;
+        std::uint32_t object_id; // object index + 1
+        glm::vec3 diffuse;
+    };
 
-    GLuint mesh_program = 0, proxy_program = 0, empty_vao = 0;
+    GLuint mesh_program = 0, proxy_program = 0, empty_vao = 0, instance_buffer = 0;
     GLuint framebuffer = 0, colour = 0, depth = 0, pack_buffer = 0;
     GLuint flat_colour = 0; // RGBA8, attachment 1, made on the first flat-preview draw
     int width = 0, height = 0;
     std::vector<Geometry> geometries;
     std::vector<DrawItem> items;
+    std::vector<Batch> batches;
 
     ~Impl() {
         for (const Geometry& g : geometries) release(g);
         glDeleteProgram(mesh_program);
         glDeleteProgram(proxy_program);
         glDeleteVertexArrays(1, &empty_vao);
+        glDeleteBuffers(1, &instance_buffer);
         glDeleteFramebuffers(1, &framebuffer);
         glDeleteBuffers(1, &pack_buffer);
         glDeleteTextures(1, &colour);
@@ -135,6 +151,35 @@ struct ItemBuffer::Impl {
         glBindVertexArray(0);
         geometries.push_back(g);
         return geometries.size() - 1;
+    }
+
+    void add_instance(std::size_t geometry, std::uint32_t object) {
+        for (Batch& b : batches)
+            if (b.geometry == geometry) return b.objects.push_back(object);
+        batches.push_back({geometry, {object}});
+    }
+
+    // Points a batch's VAO at its instances' records (divisor 1) in the bound instance buffer.
+    static void bind_instances(std::size_t first) {
+        const auto stride = static_cast<GLsizei>(sizeof(Instance));
+        const auto at = [&](std::size_t offset) {
+            return reinterpret_cast<const void*>(first * sizeof(Instance) + offset);
+        };
+        for (int column = 0; column < 8; ++column) { // two mat4s, a vec4 per location
+            const GLuint location = 1 + column;
+            const std::size_t base =
+                column < 4 ? offsetof(Instance, model_view_projection) : offsetof(Instance, model);
+            glEnableVertexAttribArray(location);
+            glVertexAttribPointer(location, 4, GL_FLOAT, GL_FALSE, stride,
+                                  at(base + (column % 4) * sizeof(glm::vec4)));
+            glVertexAttribDivisor(location, 1);
+        }
+        glEnableVertexAttribArray(9);
+        glVertexAttribIPointer(9, 1, GL_UNSIGNED_INT, stride, at(offsetof(Instance, object_id)));
+        glVertexAttribDivisor(9, 1);
+        glEnableVertexAttribArray(10);
+        glVertexAttribPointer(10, 3, GL_FLOAT, GL_FALSE, stride, at(offsetof(Instance, diffuse)));
+        glVertexAttribDivisor(10, 1);
     }
 
     void resize(int w, int h) {
@@ -276,6 +321,8 @@ void ItemBuffer::upload(const World& world, RasterMode mode, int tessellation) {
     for (const auto& g : gl.geometries) Impl::release(g);
     gl.geometries.clear();
     gl.items.clear();
+    gl.batches.clear();
+    std::map<std::uint32_t, std::size_t> mesh_geometry; // each mesh uploaded once
     deviations_.assign(world.objects().size(), 0.0f);
     // One tessellation per distinct shape (cones: per top radius; open or capped), shared by every
     // object using it.
@@ -287,8 +334,12 @@ void ItemBuffer::upload(const World& world, RasterMode mode, int tessellation) {
             continue;
         }
         if (o.shape == ShapeKind::triangle || o.shape == ShapeKind::mesh) {
-            const Mesh& mesh = world.mesh(o.mesh);
-            gl.items.push_back({i, gl.add_geometry(mesh.vertices, mesh.triangles), false, false});
+            auto [it, added] = mesh_geometry.emplace(o.mesh, 0);
+            if (added) {
+                const Mesh& mesh = world.mesh(o.mesh);
+                it->second = gl.add_geometry(mesh.vertices, mesh.triangles);
+            }
+            gl.add_instance(it->second, i);
             continue;
         }
         if (mode == RasterMode::proxy) {
@@ -323,7 +374,7 @@ void ItemBuffer::upload(const World& world, RasterMode mode, int tessellation) {
                                                   t.max_deviation))
                      .first;
         }
-        gl.items.push_back({i, it->second.first, false, false});
+        gl.add_instance(it->second.first, i);
         // World-space bound: object deviation times ‖L‖_F ≥ ‖L‖₂, the most L stretches a length.
         const Mat3& l = o.transform.linear;
         const float stretch =
@@ -367,6 +418,7 @@ ItemBufferResult ItemBuffer::draw(const World& world, bool flat_preview) {
         const glm::mat4 mvp(clip * model);
         glUniformMatrix4fv(uniform("model_view_projection"), 1, GL_FALSE, glm::value_ptr(mvp));
         glUniform1i(uniform("flat_preview"), flat_preview);
+        glUniform1i(uniform("instanced"), 0);
         if (flat_preview) {
             glUniformMatrix4fv(uniform("model"), 1, GL_FALSE, glm::value_ptr(glm::mat4(model)));
             glUniform3fv(uniform("diffuse"), 1,
@@ -400,6 +452,40 @@ ItemBufferResult ItemBuffer::draw(const World& world, bool flat_preview) {
             glDrawElements(GL_TRIANGLES, g.index_count, GL_UNSIGNED_INT, nullptr);
         }
     }
+    if (!gl.batches.empty()) {
+        // Every tessellated shape and mesh: one instanced draw per geometry, with the instances'
+        // matrices composed in double as above, then uploaded in one buffer.
+        std::vector<Impl::Instance> instances;
+        for (const Impl::Batch& batch : gl.batches)
+            for (const std::uint32_t object : batch.objects) {
+                const Object& o = world.objects()[object];
+                const glm::dmat4 model = to_mat4(o.transform.linear, o.transform.offset);
+                instances.push_back({glm::mat4(clip * model), glm::mat4(model), object + 1,
+                                     world.material(object).diffuse});
+            }
+        if (!gl.instance_buffer) glGenBuffers(1, &gl.instance_buffer);
+        glBindBuffer(GL_ARRAY_BUFFER, gl.instance_buffer);
+        glBufferData(GL_ARRAY_BUFFER,
+                     static_cast<GLsizeiptr>(instances.size() * sizeof(Impl::Instance)),
+                     instances.data(), GL_STREAM_DRAW);
+        glUseProgram(gl.mesh_program);
+        const auto uniform = [&](const char* name) {
+            return glGetUniformLocation(gl.mesh_program, name);
+        };
+        glUniform1i(uniform("flat_preview"), flat_preview);
+        glUniform1i(uniform("instanced"), 1);
+        glUniform1i(uniform("full_screen"), 0);
+        glUniform1ui(uniform("primitive_base"), 0);
+        std::size_t first = 0;
+        for (const Impl::Batch& batch : gl.batches) {
+            const Impl::Geometry& g = gl.geometries[batch.geometry];
+            glBindVertexArray(g.vao);
+            Impl::bind_instances(first);
+            glDrawElementsInstanced(GL_TRIANGLES, g.index_count, GL_UNSIGNED_INT, nullptr,
+                                    static_cast<GLsizei>(batch.objects.size()));
+            first += batch.objects.size();
+        }
+    }
     glBindVertexArray(0);
     ItemBufferResult result = gl.read_back(near);
     if (flat_preview) result.flat = gl.read_flat();
@@ -419,6 +505,7 @@ ItemBufferResult ItemBuffer::draw_triangle_for_test(const World& world, const Ve
     glUniformMatrix4fv(glGetUniformLocation(gl.mesh_program, "model_view_projection"), 1, GL_FALSE,
                        glm::value_ptr(mvp));
     glUniform1i(glGetUniformLocation(gl.mesh_program, "full_screen"), 0);
+    glUniform1i(glGetUniformLocation(gl.mesh_program, "instanced"), 0);
     glUniform1ui(glGetUniformLocation(gl.mesh_program, "object_id"), object_id);
     glUniform1ui(glGetUniformLocation(gl.mesh_program, "primitive_base"), primitive_base);
     glBindVertexArray(gl.geometries[geometry].vao);

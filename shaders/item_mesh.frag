@@ -1,19 +1,19 @@
 #version 330 core
 // Mesh mode: the rasterized (tessellated or given) triangle's object and triangle index, and for
 // the interactive preview a flat-shaded colour (diffuse dimmed by the facet's angle to the eye).
-uniform uint object_id;      // object index + 1; 0 is background
 uniform uint primitive_base; // added to gl_PrimitiveID, for meshes drawn in parts
 uniform bool flat_preview;   // write `colour` too (a second draw buffer is bound)
-uniform vec3 diffuse;
 in vec3 view_position;
+flat in uint item_object_id; // object index + 1 (item.vert: uniform or instance attribute)
+flat in vec3 item_diffuse;
 layout(location = 0) out uvec2 item;
 layout(location = 1) out vec4 colour;
 
 void main() {
-    item = uvec2(object_id, primitive_base + uint(gl_PrimitiveID));
+    item = uvec2(item_object_id, primitive_base + uint(gl_PrimitiveID));
     if (flat_preview) {
         vec3 facet = cross(dFdx(view_position), dFdy(view_position));
         vec3 n = length(facet) > 0.0 ? normalize(facet) : vec3(0.0);
-        colour = vec4(diffuse * (0.15 + 0.85 * abs(dot(n, normalize(view_position)))), 1.0);
+        colour = vec4(item_diffuse * (0.15 + 0.85 * abs(dot(n, normalize(view_position)))), 1.0);
     }
 }
