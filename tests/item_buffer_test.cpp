@@ -284,7 +284,7 @@ TEST_P(HybridTest, HybridImageAgreesWithRayImage) {
 std::vector<SceneCase> every_scene_case() {
     std::vector<SceneCase> cases;
     std::vector<std::string> scenes;
-    for (const char* name : {"default", "mirrors", "transforms", "shadows", "primitives"})
+    for (const char* name : testing::kShippedScenes)
         scenes.push_back(std::string("scenes/") + name + ".json");
     for (const char* name : {"balls-1", "gears-1", "jacks-1", "rings-1", "teapot-2", "tetra-3",
                              "tree-3", "mount-3", "lattice-4", "shells-1"})

@@ -13,13 +13,9 @@
 namespace glint {
 namespace {
 
-Scene shipped(const std::string& name, int width, int height) {
-    Scene scene = load_scene(std::filesystem::path(GLINT_SOURCE_DIR) / "scenes" / (name + ".json"));
-    scene.camera.width = width, scene.camera.height = height;
-    return scene;
-}
+using testing::shipped;
 
-class ShippedScene : public ::testing::TestWithParam<std::string> {};
+class ShippedScene : public ::testing::TestWithParam<const char*> {};
 
 // Float and double trace the same rays; they may part only where a ray grazes an edge (a pixel
 // whose primary object differs, or whose reflection or shadow ray does). Tolerance: at most
@@ -57,9 +53,7 @@ TEST_P(ShippedScene, TheReflectionCutOffBoundHoldsOnEveryPixel) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene,
-                         ::testing::Values("default", "mirrors", "primitives", "shadows",
-                                           "transforms"),
+INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene, ::testing::ValuesIn(testing::kShippedScenes),
                          [](const auto& info) { return info.param; });
 
 // Two facing mirrors of reflectivity 0.9: what is cut off is at most 0.9^(depth+1) of what a

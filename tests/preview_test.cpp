@@ -18,11 +18,7 @@
 namespace glint {
 namespace {
 
-Scene shipped(const std::string& name, int width, int height) {
-    Scene scene = load_scene(std::string(GLINT_SOURCE_DIR "/scenes/") + name + ".json");
-    scene.camera.width = width, scene.camera.height = height;
-    return scene;
-}
+using testing::shipped;
 
 // The item buffer of a camera as ray casting sees it: ids and view depths of the true hits.
 std::shared_ptr<const IdImage> ids_by_ray(const World& world) {
@@ -46,7 +42,7 @@ void run_to_completion(const std::shared_ptr<RefineJob>& job, int threads) {
     while (!job->finished()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
 }
 
-class RefinerTest : public ::testing::TestWithParam<std::string> {};
+class RefinerTest : public ::testing::TestWithParam<const char*> {};
 
 // Tile by tile, centre first, on any number of threads: the same bytes as shade_image over the
 // same primary hits (ray mode, and hybrid from an id image), and the same ray counts.
@@ -74,9 +70,7 @@ TEST_P(RefinerTest, AFinishedJobIsTheHeadlessImage) {
     EXPECT_GT(job->seconds(), 0.0);
 }
 
-INSTANTIATE_TEST_SUITE_P(ShippedScenes, RefinerTest,
-                         ::testing::Values("default", "mirrors", "transforms", "shadows",
-                                           "primitives"),
+INSTANTIATE_TEST_SUITE_P(ShippedScenes, RefinerTest, ::testing::ValuesIn(testing::kShippedScenes),
                          [](const auto& info) { return info.param; });
 
 // The difference view: with the comparison on, pixels whose resolved object is not the ray's are

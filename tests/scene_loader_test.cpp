@@ -122,8 +122,10 @@ INSTANTIATE_TEST_SUITE_P(EveryClass, BadSceneTest, ::testing::Values(
              "/objects/0/vertices: a triangle has exactly 3 vertices"},
     BadScene{"collinear triangle", R"({"objects": [{"shape": "triangle", "vertices": [[0,0,0],[1,1,1],[2,2,2]]}]})",
              "/objects/0/vertices: the triangle's vertices are collinear"},
-    BadScene{"mesh file before OBJ import", R"({"objects": [{"shape": "mesh", "file": "bunny.obj"}]})",
-             "/objects/0/file: mesh files (OBJ) are not supported yet"},
+    BadScene{"missing mesh file", R"({"objects": [{"shape": "mesh", "file": "bunny.obj"}]})",
+             "/objects/0/file: bunny.obj: cannot open mesh file"},
+    BadScene{"mesh file on a sphere", R"({"objects": [{"shape": "sphere", "file": "bunny.obj"}]})",
+             "/objects/0/file: only meshes are read from files"},
     BadScene{"key with a slash is escaped in the path", R"({"materials": {"a/b": {"shine": 1}}})", "/materials/a~1b/shine: unknown key"}
 ), [](const auto& info) { return testing::test_name(info.param.what); });
 // clang-format on

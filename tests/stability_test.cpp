@@ -20,11 +20,7 @@ namespace {
 using testing::moved;
 using testing::scene_at_origin;
 
-Scene shipped(const char* name, int width, int height) {
-    Scene scene = load_scene(std::string(GLINT_SOURCE_DIR "/scenes/") + name);
-    scene.camera.width = width, scene.camera.height = height;
-    return scene;
-}
+using testing::shipped;
 
 // Pixels may flip where a camera or shadow ray passes within float rounding of a silhouette or
 // shadow edge: the scaled scene is the same scene rounded differently, so only such pixels may
@@ -35,7 +31,7 @@ constexpr double kEdgeFlips = 0.001;
 class ScaleTest : public ::testing::TestWithParam<double> {};
 
 TEST_P(ScaleTest, AUniformlyScaledSceneRendersTheSameImage) {
-    for (const char* name : {"default.json", "mirrors.json"}) {
+    for (const char* name : {"default", "mirrors"}) {
         const Scene scene = shipped(name, 160, 120);
         const Image reference = render(World(scene)).image;
         const Image scaled = render(World(moved(scene, GetParam(), DVec3(0.0)))).image;
@@ -54,7 +50,7 @@ INSTANTIATE_TEST_SUITE_P(FromMicroToMega, ScaleTest, ::testing::Values(1e-6, 1e-
 TEST(Stability, ASceneMovedAMillionUnitsAwayRendersTheSameImage) {
     // Camera-relative coordinates, composed in double at load time: nothing per ray depends on
     // the distance to the world origin, so the image is byte for byte the same.
-    for (const char* name : {"default.json", "transforms.json"}) {
+    for (const char* name : {"default", "transforms"}) {
         const Scene scene = shipped(name, 160, 120);
         const Image reference = render(World(scene)).image;
         for (const DVec3 d : {DVec3(1e6, 0, 0), DVec3(-1e6, 1e6, 1e6), DVec3(0, 0, 1e6)}) {

@@ -10,6 +10,17 @@
 
 namespace glint::testing {
 
+// The scenes in scenes/ (README's table), by name: every test over "each shipped scene" uses this.
+inline constexpr const char* kShippedScenes[] = {"default", "mirrors",    "transforms",
+                                                 "shadows", "primitives", "instances"};
+
+// scenes/<name>.json, at the given size (0: the scene's own).
+inline Scene shipped(const std::string& name, int width = 0, int height = 0) {
+    Scene scene = load_scene(std::string(GLINT_SOURCE_DIR "/scenes/") + name + ".json");
+    if (width > 0) scene.camera.width = width, scene.camera.height = height;
+    return scene;
+}
+
 // A scene whose camera sits at the world origin (so camera-relative coordinates equal the
 // scene's own) with the given objects, materials and lights as JSON fragments.
 inline Scene scene_at_origin(const std::string& objects, const std::string& materials = "{}",

@@ -1,5 +1,7 @@
 // The preview in a real window (run under `xvfb-run -a`, see CMakeLists.txt): scripted runs save
 // the window's framebuffer, which must show what the headless passes compute.
+#include "test_scenes.h"
+
 #include "app/frame.h"
 #include "preview/preview.h"
 #include "preview/views.h"
@@ -15,9 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-Scene shipped(const std::string& name) {
-    return load_scene(std::string(GLINT_SOURCE_DIR "/scenes/") + name + ".json");
-}
+using testing::shipped;
 
 // Runs the scripted preview and returns its screenshot.
 Image screenshot(const Scene& scene, View view, const std::string& name) {
@@ -61,7 +61,7 @@ TEST(Preview, ScriptedScreenshotOfTheDefaultSceneMatchesTheHeadlessHybridRender)
 // the item-buffer view is the headless item buffer in false colour, and each other view is an
 // image of its own (not the final image, not one flat colour).
 TEST(Preview, EveryViewOfEveryShippedSceneShowsWhatItShould) {
-    for (const char* name : {"default", "mirrors", "transforms", "shadows", "primitives"}) {
+    for (const char* name : testing::kShippedScenes) {
         SCOPED_TRACE(name);
         Scene scene = shipped(name);
         scene.camera.width = 160, scene.camera.height = 120;

@@ -5,7 +5,6 @@
 #include "trace/scene_loader.h"
 
 #include <cctype>
-#include <charconv>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -125,11 +124,8 @@ class NffReader {
         if (!t)
             fail(last_line_, "the file ends inside '" + std::string(entity.text) + "' (line " +
                                  std::to_string(entity.line) + "), before its " + what);
-        std::string_view s = t->text;
-        if (s.size() > 1 && s[0] == '+') s.remove_prefix(1);
         double value = 0;
-        const auto [end, error] = std::from_chars(s.data(), s.data() + s.size(), value);
-        if (error != std::errc() || end != s.data() + s.size() || !std::isfinite(value))
+        if (!parse_number(t->text, value))
             fail(t->line, "expected a number for " + std::string(entity.text) + "'s " + what +
                               ", got '" + std::string(t->text.substr(0, 40)) + "'");
         if (std::abs(value) > kMaxCoordinate)

@@ -1,14 +1,18 @@
 #include "trace/scene_loader.h"
 
+#include "trace/obj_loader.h"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <fstream>
 #include <initializer_list>
+#include <map>
 #include <sstream>
 
 namespace glint {
@@ -342,11 +346,12 @@ class Loader {
             fail(node.child("vertices"), "only triangles and meshes have vertices");
         if (has(node, "indices") && o.shape != ShapeKind::mesh)
             fail(node.child("indices"), "only meshes have indices");
-        if (has(node, "file")) {
+        const bool from_file = has(node, "file");
+        if (from_file) {
             if (o.shape != ShapeKind::mesh)
                 fail(node.child("file"), "only meshes are read from files");
-            fail(node.child("file"),
-                 "mesh files (OBJ) are not supported yet; give vertices and indices inline");
+            if (has(node, "vertices") || has(node, "indices"))
+                fail(node.child("file"), "a mesh has either a file or vertices and indices");
         }
         if (has(node, "material")) {
             const Node m = node.child("material");
@@ -365,13 +370,31 @@ class Loader {
         if (has(node, "top_radius"))
             o.top_radius = static_cast<float>(number_in(node.child("top_radius"), 0, 1e6));
         if (has(node, "open")) o.open = boolean(node.child("open"));
-        if (triangles) {
-            o.mesh = static_cast<std::uint32_t>(scene.meshes.size());
-            scene.meshes.push_back(mesh(node, o.shape));
+        std::vector<SceneObject> placed;
+        if (from_file) {
+            // Each part (one per MTL material) of the file is an object; every further object
+            // naming the same file places the same meshes again (instances).
+            for (const auto& [mesh, material] : obj_parts(node.child("file"), scene)) {
+                SceneObject part = o;
+                part.mesh = mesh;
+                if (!has(node, "material")) part.material = material;
+                placed.push_back(part);
+            }
+        } else {
+            if (triangles) {
+                o.mesh = static_cast<std::uint32_t>(scene.meshes.size());
+                scene.meshes.push_back(mesh(node, o.shape));
+            }
+            placed.push_back(o);
         }
+        for (const SceneObject& p : placed) check_reach(node, p, scene);
+        scene.objects.insert(scene.objects.end(), placed.begin(), placed.end());
+    }
+
+    // Positions are bounded so that their squares stay finite in float; so must every point of
+    // a placed object (a mesh vertex of 1e15 scaled by 1e15 is not a position).
+    void check_reach(const Node& node, const SceneObject& o, const Scene& scene) const {
         if (o.shape != ShapeKind::plane) {
-            // Positions are bounded so that their squares stay finite in float; so must every
-            // point of a placed object (a mesh vertex of 1e15 scaled by 1e15 is not a position).
             const auto [lo, hi] = transformed_box(*unit_box(o, scene.meshes), o.transform);
             const DVec3 far = glm::max(glm::abs(lo), glm::abs(hi));
             const double reach = std::max({far.x, far.y, far.z});
@@ -382,10 +405,42 @@ class Loader {
                 fail(has(node, "transform") ? node.child("transform") : node, message.str());
             }
         }
-        scene.objects.push_back(o);
+    }
+
+    // The meshes (and their materials) of an OBJ file, read once per scene: a path relative to
+    // the scene file's directory, the same file named again reusing what was read.
+    const std::vector<std::pair<std::uint32_t, std::uint32_t>>& obj_parts(const Node& node,
+                                                                          Scene& scene) const {
+        const std::string given = string(node);
+        if (given.empty()) fail(node, "must name an OBJ file");
+        const std::filesystem::path path = std::filesystem::path(file_).parent_path() / given;
+        std::error_code ec;
+        const std::filesystem::path canonical = std::filesystem::weakly_canonical(path, ec);
+        const std::string key = ec ? path.lexically_normal().string() : canonical.string();
+        if (const auto it = obj_cache_.find(key); it != obj_cache_.end()) return it->second;
+        ObjModel model;
+        try {
+            model = load_obj(path);
+        } catch (const SceneError& e) {
+            fail(node, e.what());
+        }
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> parts;
+        for (ObjPart& part : model.parts) {
+            std::uint32_t material = 0;
+            if (part.material) {
+                material = static_cast<std::uint32_t>(scene.materials.size());
+                scene.materials.push_back(*part.material);
+                scene.material_names.push_back(given + ":" + part.material_name);
+            }
+            parts.emplace_back(static_cast<std::uint32_t>(scene.meshes.size()), material);
+            scene.meshes.push_back(std::move(part.mesh));
+        }
+        scene.notes.insert(scene.notes.end(), model.notes.begin(), model.notes.end());
+        return obj_cache_.emplace(key, std::move(parts)).first->second;
     }
 
     std::string file_;
+    mutable std::map<std::string, std::vector<std::pair<std::uint32_t, std::uint32_t>>> obj_cache_;
 };
 
 // "file:line:column" of the byte at `offset` (0-based) in `text`.
@@ -464,17 +519,23 @@ Scene parse_scene(const std::string& text, const std::string& name) {
     return Loader(name).load(root);
 }
 
-Scene load_scene(const std::filesystem::path& path) {
+bool parse_number(std::string_view token, double& value) {
+    if (token.size() > 1 && token[0] == '+') token.remove_prefix(1);
+    const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
+    return error == std::errc() && end == token.data() + token.size() && std::isfinite(value);
+}
+
+std::string read_scene_file(const std::filesystem::path& path, const std::string& kind) {
     const std::string name = path.string();
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
-        throw SceneError(name + ": is a directory, not a scene file");
+        throw SceneError(name + ": is a directory, not a " + kind);
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw SceneError(name + ": cannot open scene file: " + std::strerror(errno));
+    if (!in) throw SceneError(name + ": cannot open " + kind + ": " + std::strerror(errno));
     const auto size = std::filesystem::file_size(path, ec);
     const std::string limit = "; the limit is " + std::to_string(kMaxSceneBytes >> 20) + " MiB";
     if (!ec && size > kMaxSceneBytes)
-        throw SceneError(name + ": scene file is " + std::to_string(size >> 20) + " MiB" + limit);
+        throw SceneError(name + ": " + kind + " is " + std::to_string(size >> 20) + " MiB" + limit);
     // Read no more than the limit allows: devices and pipes (/dev/zero) have no size to ask.
     std::string text;
     if (!ec) text.reserve(size);
@@ -482,9 +543,15 @@ Scene load_scene(const std::filesystem::path& path) {
     while (in.read(chunk, sizeof chunk) || in.gcount() > 0) {
         text.append(chunk, static_cast<std::size_t>(in.gcount()));
         if (text.size() > kMaxSceneBytes)
-            throw SceneError(name + ": scene file is larger than allowed" + limit);
+            throw SceneError(name + ": " + kind + " is larger than allowed" + limit);
     }
-    if (in.bad()) throw SceneError(name + ": cannot read scene file: " + std::strerror(errno));
+    if (in.bad()) throw SceneError(name + ": cannot read " + kind + ": " + std::strerror(errno));
+    return text;
+}
+
+Scene load_scene(const std::filesystem::path& path) {
+    const std::string name = path.string();
+    const std::string text = read_scene_file(path, "scene file");
     std::string extension = path.extension().string();
     for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     return extension == ".nff" ? parse_nff(text, name) : parse_scene(text, name);

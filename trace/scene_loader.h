@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace glint {
 
@@ -29,6 +30,13 @@ inline constexpr double kMaxColour = 1e6;
 inline constexpr std::size_t kMaxLights = 4096;
 // The deepest scene is 6 levels (/objects/i/transform/j/matrix/row); nothing needs more.
 inline constexpr int kMaxJsonDepth = 32;
+
+// The whole file, refused beyond kMaxSceneBytes (read no further: /dev/zero ends too). `kind`
+// names it in errors ("scene file", "mesh file").
+std::string read_scene_file(const std::filesystem::path& path, const std::string& kind);
+
+// A number as scene text writes it ("1", "-2.5e-3", "+4"): finite, the whole token.
+bool parse_number(std::string_view token, double& value);
 
 // JSON, or NFF when the name ends in .nff (any case).
 Scene load_scene(const std::filesystem::path& path);

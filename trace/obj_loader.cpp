@@ -1,0 +1,291 @@
+// OBJ through tinyobjloader. tinyobjloader is lenient: a number it cannot read becomes 0, an
+// index beyond the vertices is only a warning, and a face's vertex count is kept in a byte. So
+// every line is checked here first, and an error names the line; tinyobjloader then reads the
+// checked text and its MTL materials. Faces are triangulated by ear clipping (trace/polygon.h):
+// tinyobjloader's own triangulation is a fan, wrong for concave faces.
+#include "trace/obj_loader.h"
+
+#include "trace/polygon.h"
+#include "trace/scene_loader.h"
+
+#include <tiny_obj_loader.h>
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <string_view>
+
+namespace glint {
+namespace {
+
+// Statements of the OBJ format that describe no triangle (free-form geometry, grouping,
+// display attributes): read past. Anything else is not OBJ.
+constexpr std::array<std::string_view, 27> kIgnored = {
+    "o",     "g",    "s",      "vp",     "cstype",     "deg",       "bmat",  "step",  "curv",
+    "curv2", "surf", "parm",   "trim",   "hole",       "scrv",      "sp",    "end",   "con",
+    "mg",    "lod",  "usemap", "maplib", "shadow_obj", "trace_obj", "ctech", "stech", "bevel"};
+// tinyobjloader stores a face's vertex count in a byte.
+constexpr std::size_t kMaxFaceVertices = 255;
+
+std::vector<std::string_view> split(std::string_view line) {
+    std::vector<std::string_view> words;
+    std::size_t i = 0;
+    while (i < line.size()) {
+        while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+        const std::size_t start = i;
+        while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
+        if (i > start) words.push_back(line.substr(start, i - start));
+    }
+    return words;
+}
+
+// Checks every line; collects the material libraries named and what will be ignored.
+class LineChecker {
+  public:
+    explicit LineChecker(std::string name) : name_(std::move(name)) {}
+
+    void check(const std::string& text) {
+        std::size_t start = 0;
+        int line = 0;
+        while (start <= text.size()) {
+            std::size_t end = text.find('\n', start);
+            if (end == std::string::npos) end = text.size();
+            ++line;
+            std::string_view l = std::string_view(text).substr(start, end - start);
+            if (const std::size_t hash = l.find('#'); hash != std::string_view::npos)
+                l = l.substr(0, hash);
+            if (!l.empty() && l.back() == '\r') l.remove_suffix(1);
+            statement(split(l), line);
+            start = end + 1;
+        }
+        if (faces_ == 0) fail(line, "no faces (f): an OBJ mesh needs at least one");
+    }
+
+    std::vector<std::string> libraries;
+    std::size_t lines_and_points = 0;
+
+  private:
+    [[noreturn]] void fail(int line, const std::string& message) const {
+        throw SceneError(name_ + ":" + std::to_string(line) + ": " + message);
+    }
+
+    void numbers(const std::vector<std::string_view>& w, int line, std::size_t lo, std::size_t hi,
+                 bool position) const {
+        if (w.size() - 1 < lo || w.size() - 1 > hi)
+            fail(line, std::string(w[0]) + " needs " + std::to_string(lo) +
+                           (lo == hi ? "" : " to " + std::to_string(hi)) + " numbers, got " +
+                           std::to_string(w.size() - 1));
+        for (std::size_t i = 1; i < w.size(); ++i) {
+            double v = 0;
+            if (!parse_number(w[i], v))
+                fail(line, "expected a number in " + std::string(w[0]) + ", got '" +
+                               std::string(w[i].substr(0, 40)) + "'");
+            if (position && i <= 3 && std::abs(v) > kMaxCoordinate)
+                fail(line, "coordinate beyond 1e15, too large for float");
+        }
+    }
+
+    // One index of a face corner: 1..count, or −count..−1 counting back from the last.
+    void index(std::string_view s, std::size_t count, const char* what, const char* plural,
+               int line) const {
+        long long i = 0;
+        const auto [end, error] = std::from_chars(s.data(), s.data() + s.size(), i);
+        if (error != std::errc() || end != s.data() + s.size() || i == 0)
+            fail(line, std::string("expected a ") + what +
+                           " index (1 or more, or negative from "
+                           "the last), got '" +
+                           std::string(s.substr(0, 40)) + "'");
+        const long long n = static_cast<long long>(count);
+        if (i > n || i < -n)
+            fail(line, std::string(what) + " index " + std::to_string(i) + " is beyond the " +
+                           std::to_string(count) + " " + plural + " defined so far");
+    }
+
+    void face(const std::vector<std::string_view>& w, int line) {
+        if (w.size() - 1 < 3) fail(line, "a face needs at least 3 vertices");
+        if (w.size() - 1 > kMaxFaceVertices)
+            fail(line, "a face has more than " + std::to_string(kMaxFaceVertices) + " vertices");
+        for (std::size_t k = 1; k < w.size(); ++k) {
+            // v, v/t, v//n or v/t/n
+            std::array<std::string_view, 3> parts;
+            std::size_t count = 0, from = 0;
+            const std::string_view c = w[k];
+            while (true) {
+                const std::size_t slash = c.find('/', from);
+                if (count == 3) fail(line, "a face corner has at most 3 parts (v/t/n)");
+                parts[count++] =
+                    c.substr(from, slash == std::string_view::npos ? c.npos : slash - from);
+                if (slash == std::string_view::npos) break;
+                from = slash + 1;
+            }
+            index(parts[0], vertices_, "vertex", "vertices", line);
+            if (count > 1 && !parts[1].empty())
+                index(parts[1], texcoords_, "texture coordinate", "texture coordinates", line);
+            if (count > 2) index(parts[2], normals_, "normal", "normals", line);
+        }
+        ++faces_;
+    }
+
+    void statement(const std::vector<std::string_view>& w, int line) {
+        if (w.empty()) return;
+        const std::string_view k = w[0];
+        if (k == "v") {
+            numbers(w, line, 3, 7, true); // x y z [w] or x y z r g b
+            ++vertices_;
+        } else if (k == "vn") {
+            numbers(w, line, 3, 3, false);
+            ++normals_;
+        } else if (k == "vt") {
+            numbers(w, line, 1, 3, false);
+            ++texcoords_;
+        } else if (k == "f") {
+            face(w, line);
+        } else if (k == "l" || k == "p") {
+            ++lines_and_points;
+        } else if (k == "mtllib") {
+            for (std::size_t i = 1; i < w.size(); ++i) libraries.emplace_back(w[i]);
+        } else if (k == "usemtl") {
+            if (w.size() < 2) fail(line, "usemtl needs a material name");
+        } else if (std::find(kIgnored.begin(), kIgnored.end(), k) == kIgnored.end()) {
+            fail(line, "unknown statement '" + std::string(k.substr(0, 40)) + "'");
+        }
+    }
+
+    std::string name_;
+    std::size_t vertices_ = 0, normals_ = 0, texcoords_ = 0, faces_ = 0;
+};
+
+glm::vec3 mtl_colour(const tinyobj::real_t (&c)[3], const std::string& what,
+                     const std::string& material, const std::string& name) {
+    for (const tinyobj::real_t v : c)
+        if (!(v >= 0 && v <= kMaxColour))
+            throw SceneError(name + ": material '" + material + "': " + what +
+                             " components must be between 0 and 1e6");
+    return {c[0], c[1], c[2]};
+}
+
+// One part being built: its vertices are the file's distinct (position, normal) pairs it uses.
+struct PartBuilder {
+    ObjPart part;
+    std::map<std::pair<int, int>, std::uint32_t> corners;
+    bool all_normals = true;
+};
+
+} // namespace
+
+ObjModel parse_obj(const std::string& text, const std::string& name,
+                   const std::function<std::optional<std::string>(const std::string&)>& read_mtl) {
+    LineChecker checker(name);
+    checker.check(text);
+    ObjModel model;
+    std::string mtl_text;
+    for (const std::string& library : checker.libraries) {
+        if (const auto t = read_mtl(library))
+            mtl_text += *t + "\n";
+        else
+            model.notes.push_back(name + ": material library '" + library +
+                                  "' cannot be read; its faces get the default material");
+    }
+    if (checker.lines_and_points > 0)
+        model.notes.push_back(name + ": " + std::to_string(checker.lines_and_points) +
+                              " line and point statements (l, p) ignored: glint draws surfaces");
+
+    tinyobj::ObjReaderConfig config;
+    config.triangulate = false; // ear clipping below, right for concave faces too
+    config.vertex_color = false;
+    tinyobj::ObjReader reader;
+    if (!reader.ParseFromString(text, mtl_text, config) || !reader.Error().empty())
+        throw SceneError(name + ": " + reader.Error());
+    const tinyobj::attrib_t& attrib = reader.GetAttrib();
+    const std::vector<tinyobj::material_t>& materials = reader.GetMaterials();
+
+    std::map<int, PartBuilder> parts; // by MTL material (−1: none)
+    std::size_t degenerate = 0;
+    for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+        const tinyobj::mesh_t& mesh = shape.mesh;
+        std::size_t offset = 0;
+        for (std::size_t f = 0; f < mesh.num_face_vertices.size(); ++f) {
+            const std::size_t n = mesh.num_face_vertices[f];
+            const int material_id = f < mesh.material_ids.size() ? mesh.material_ids[f] : -1;
+            PartBuilder& b =
+                parts[material_id >= 0 && static_cast<std::size_t>(material_id) < materials.size()
+                          ? material_id
+                          : -1];
+            std::vector<glm::dvec3> polygon;
+            std::vector<std::uint32_t> corners;
+            for (std::size_t k = 0; k < n; ++k) {
+                const tinyobj::index_t& i = mesh.indices[offset + k];
+                const auto vi = static_cast<std::size_t>(i.vertex_index);
+                const glm::vec3 p(attrib.vertices[3 * vi], attrib.vertices[3 * vi + 1],
+                                  attrib.vertices[3 * vi + 2]);
+                polygon.emplace_back(p);
+                const auto [it, added] =
+                    b.corners.emplace(std::make_pair(i.vertex_index, i.normal_index),
+                                      static_cast<std::uint32_t>(b.part.mesh.vertices.size()));
+                if (added) {
+                    b.part.mesh.vertices.push_back(p);
+                    if (i.normal_index >= 0) {
+                        const auto ni = static_cast<std::size_t>(i.normal_index);
+                        b.part.mesh.normals.emplace_back(attrib.normals[3 * ni],
+                                                         attrib.normals[3 * ni + 1],
+                                                         attrib.normals[3 * ni + 2]);
+                    } else {
+                        b.all_normals = false;
+                        b.part.mesh.normals.emplace_back(0.0f);
+                    }
+                }
+                corners.push_back(it->second);
+            }
+            offset += n;
+            const std::vector<glm::uvec3> triangles = triangulate_polygon(polygon);
+            if (triangles.empty()) ++degenerate;
+            for (const glm::uvec3& t : triangles)
+                b.part.mesh.triangles.push_back({corners[t.x], corners[t.y], corners[t.z]});
+        }
+    }
+    if (degenerate > 0)
+        model.notes.push_back(name + ": " + std::to_string(degenerate) +
+                              " face(s) of zero area left out");
+    for (auto& [id, b] : parts) {
+        if (b.part.mesh.triangles.empty()) continue;
+        if (b.part.mesh.vertices.size() > kMaxMeshVertices ||
+            b.part.mesh.triangles.size() > kMaxMeshTriangles)
+            throw SceneError(name + ": more than 2^24 vertices or triangles in one material");
+        // Smooth shading needs a normal at every vertex; a part with some missing is flat.
+        if (!b.all_normals) b.part.mesh.normals.clear();
+        for (glm::vec3& n : b.part.mesh.normals)
+            if (!std::isfinite(n.x + n.y + n.z)) n = glm::vec3(0.0f); // the facet stands in
+        if (id >= 0) {
+            const tinyobj::material_t& m = materials[static_cast<std::size_t>(id)];
+            Material material;
+            material.diffuse = mtl_colour(m.diffuse, "Kd", m.name, name);
+            material.ambient = material.diffuse;
+            material.specular = mtl_colour(m.specular, "Ks", m.name, name);
+            if (!(m.shininess >= 0 && m.shininess <= 1e4))
+                throw SceneError(name + ": material '" + m.name +
+                                 "': Ns must be between 0 and 10000");
+            material.shininess = m.shininess;
+            b.part.material = material;
+            b.part.material_name = m.name;
+        }
+        model.parts.push_back(std::move(b.part));
+    }
+    return model;
+}
+
+ObjModel load_obj(const std::filesystem::path& path) {
+    const std::string text = read_scene_file(path, "mesh file");
+    const std::filesystem::path dir = path.parent_path();
+    return parse_obj(text, path.string(), [&](const std::string& library) {
+        try {
+            return std::optional<std::string>(read_scene_file(dir / library, "material library"));
+        } catch (const SceneError&) {
+            return std::optional<std::string>();
+        }
+    });
+}
+
+} // namespace glint
