@@ -40,7 +40,7 @@ struct SlabRay {
     // The ray's segment inside b, clipped to [0, t_max]; false when it is empty. Conservative:
     // the far distance is enlarged by 2γ3 (pbrt-v4, Bounds3::IntersectP), so rounding in the
     // slab arithmetic never drops a box the ray touches.
-    bool clip(const Bounds& b, Real t_max, Real& t_near, Real& t_far) const {
+    [[gnu::always_inline]] bool clip(const Bounds& b, Real t_max, Real& t_near, Real& t_far) const {
         const Vec3 t0 = (b.lo - origin) * inverse_direction;
         const Vec3 t1 = (b.hi - origin) * inverse_direction;
         const Vec3 near = glm::min(t0, t1), far = glm::max(t0, t1);
@@ -51,7 +51,7 @@ struct SlabRay {
     }
 
     // Entry distance into b over [0, t_max], or infinity.
-    Real entry(const Bounds& b, Real t_max) const {
+    [[gnu::always_inline]] Real entry(const Bounds& b, Real t_max) const {
         Real t_near, t_far;
         return clip(b, t_max, t_near, t_far) ? t_near : kInfinity;
     }

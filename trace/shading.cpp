@@ -21,9 +21,12 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, int depth, Real w
         ++counts.shadow;
         // Hard shadows: anything on the open segment from the point to the light (t in (0, 1)).
         if (world.occluded({origin, light.position - origin}, 1.0_r, surface.skip)) continue;
-        const Vec3 r = 2.0_r * n * n_dot_l - l; // reflect(−l, n)
-        const Real specular = std::pow(glm::max(0.0_r, glm::dot(r, v)), m.shininess);
-        colour += light.color * (m.diffuse * n_dot_l + m.specular * specular);
+        Vec3 lit = m.diffuse * n_dot_l;
+        if (m.specular != Vec3(0.0_r)) { // pow is dear, and NFF's matte surfaces have 1e5
+            const Vec3 r = 2.0_r * n * n_dot_l - l; // reflect(−l, n)
+            lit += m.specular * std::pow(glm::max(0.0_r, glm::dot(r, v)), m.shininess);
+        }
+        colour += light.color * lit;
     }
 
     // Perfect reflection, cast only while it can still matter: below max_depth, and while the

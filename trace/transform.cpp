@@ -49,20 +49,6 @@ Transform make_transform(const DMat4& m) {
     return t;
 }
 
-Ray Transform::to_object(const Ray& ray) const {
-    switch (kind) {
-    case TransformClass::identity:
-        return ray;
-    case TransformClass::translation:
-        return {ray.origin - offset, ray.direction};
-    case TransformClass::uniform_scale:
-        return {(ray.origin - offset) * inverse_scale, ray.direction * inverse_scale};
-    case TransformClass::general:
-        break;
-    }
-    return {inverse_linear * ray.origin + inverse_offset, inverse_linear * ray.direction};
-}
-
 Vec3 Transform::point_to_world(Vec3 p) const {
     switch (kind) {
     case TransformClass::identity:

@@ -32,7 +32,20 @@ struct Transform {
     Real roundtrip_offset_error = 0.0_r;
 
     // The ray in object space: origin with w = 1, direction with w = 0, not renormalised.
-    Ray to_object(const Ray& ray) const;
+    // Inline: every intersection test starts here.
+    Ray to_object(const Ray& ray) const {
+        switch (kind) {
+        case TransformClass::identity:
+            return ray;
+        case TransformClass::translation:
+            return {ray.origin - offset, ray.direction};
+        case TransformClass::uniform_scale:
+            return {(ray.origin - offset) * inverse_scale, ray.direction * inverse_scale};
+        case TransformClass::general:
+            break;
+        }
+        return {inverse_linear * ray.origin + inverse_offset, inverse_linear * ray.direction};
+    }
     Vec3 point_to_world(Vec3 p) const;
     // normalize(M⁻ᵀ n) for an object-space normal n.
     Vec3 normal_to_world(Vec3 n) const;
