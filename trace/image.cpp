@@ -52,6 +52,9 @@ void write_png(const std::filesystem::path& path, const Image& image) {
         static_cast<std::string*>(context)->append(static_cast<const char*>(data),
                                                    static_cast<std::size_t>(size));
     };
+    // stb's default level 8 took 0.3 s of a 1.6 s 1080p render (balls-4, 17% of the time) for
+    // files only ~10% smaller than level 2's.
+    stbi_write_png_compression_level = 2;
     if (!stbi_write_png_to_func(append, &png, image.width, image.height, 3, image.rgb.data(),
                                 image.width * 3))
         throw std::runtime_error("cannot encode " + path.string() + " as PNG");
