@@ -16,7 +16,7 @@ namespace glint {
 namespace fs = std::filesystem;
 
 void SceneOptions::add_to(CLI::App& cmd) {
-    cmd.add_option("scene", scene, "Scene file (JSON); default scenes/default.json");
+    cmd.add_option("scene", scene, "Scene file: JSON, or NFF (.nff); default scenes/default.json");
     cmd.add_option("--size", size, "Image size WIDTHxHEIGHT, overriding the scene's camera");
     cmd.add_option("--accel", accel,
                    "Acceleration structure: bvh, spheres, grid, kd or list; auto: list below 16 "

@@ -512,7 +512,7 @@ Command add_tradeoff_command(CLI::App& app) {
     auto args = std::make_shared<TradeoffArgs>();
     CLI::App* cmd = app.add_subcommand(
         "tradeoff", "Sweep the speed/accuracy knobs against the exact image: CSV, plots, summary");
-    cmd->add_option("scenes", args->scenes, "Scene files (JSON); default every scene in scenes/");
+    cmd->add_option("scenes", args->scenes, "Scene files (JSON or .nff); default every scene in scenes/");
     cmd->add_option("-o,--output", args->output, "Directory for tradeoff.csv and the plots")
         ->capture_default_str();
     cmd->add_option("--summary", args->summary, "Markdown summary; default OUTPUT/summary.md");

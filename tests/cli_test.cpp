@@ -132,6 +132,21 @@ TEST(Cli, TradeoffWritesTheCsvAPlotPerSceneAndTheSummary) {
     EXPECT_NE(summary.find("](./default.svg)"), std::string::npos) << summary;
 }
 
+// The commands take NFF files and scenes with OBJ meshes as they take JSON scenes.
+TEST(Cli, CompareAndTradeoffTakeNffAndObjScenes) {
+    const fs::path dir = fresh_dir();
+    Outcome r = glint(dir, "compare '" GLINT_SOURCE_DIR "/tests/data/spd/rings-1.nff' --size "
+                           "64x64 -o rings");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(read_png(dir / "rings-hybrid.png").width, 64);
+    r = glint(dir, "tradeoff '" GLINT_SOURCE_DIR "/tests/data/spd/tree-3.nff' '" GLINT_SOURCE_DIR
+                   "/scenes/instances.json' --size 32x24 --repeat 1 -o sweep");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string summary = slurp(dir / "sweep" / "summary.md");
+    EXPECT_NE(summary.find("## tree-3 (32×24"), std::string::npos) << summary;
+    EXPECT_NE(summary.find("## instances (32×24"), std::string::npos) << summary;
+}
+
 TEST(Cli, WithoutArgumentsRendersTheDefaultSceneIntoOut) {
     const fs::path dir = fresh_dir();
     const Outcome r = glint(dir, "render --size 16x12");
@@ -148,7 +163,7 @@ TEST(Cli, OverridesChangeWhatIsTraced) {
 
 struct BadRun {
     const char* what;
-    const char* scene; // written to scene.json when not empty
+    const char* scene; // written to scene.json (scene.nff if the args name it) when not empty
     const char* args;
     const char* message;
 };
@@ -158,7 +173,8 @@ class BadRunTest : public ::testing::TestWithParam<BadRun> {};
 TEST_P(BadRunTest, ExitsTwoWithItsMessageAndWritesNothing) {
     const BadRun& bad = GetParam();
     const fs::path dir = fresh_dir();
-    if (*bad.scene) write(dir / "scene.json", bad.scene);
+    const bool nff = std::string_view(bad.args).find("scene.nff") != std::string_view::npos;
+    if (*bad.scene) write(dir / (nff ? "scene.nff" : "scene.json"), bad.scene);
     write(dir / "keep.png", "precious");
     // The preview has no -o: its only output is --screenshot, which its cases name.
     const bool preview = std::string_view(bad.args).starts_with("preview");
@@ -177,6 +193,9 @@ TEST_P(BadRunTest, ExitsTwoWithItsMessageAndWritesNothing) {
 
 // clang-format off
 INSTANTIATE_TEST_SUITE_P(EveryClass, BadRunTest, ::testing::Values(
+    BadRun{"NFF: a word for a number", "v from 0 0 1 at 0 0 0 up 0 1 0 angle 40 hither 1 resolution 8 8\ns 0 0 x 1\n", "render scene.nff", "glint: error: scene.nff:2: expected a number for s's centre, got 'x'"},
+    BadRun{"NFF: cut short", "v from 0 0 1 at 0 0 0 up 0 1 0 angle 40 hither 1 resolution 8 8\np 3\n0 0 0\n", "compare scene.nff", "glint: error: scene.nff:3: the file ends inside 'p' (line 2)"},
+    BadRun{"OBJ missing", R"({"objects": [{"shape": "mesh", "file": "none.obj"}]})", "render scene.json", "scene.json: /objects/0/file: none.obj: cannot open mesh file"},
     BadRun{"malformed JSON", "{\"objects\": [", "render scene.json", "glint: error: scene.json:1:14: malformed JSON"},
     BadRun{"unknown key", R"({"objects": [{"shape": "sphere", "materal": "x"}]})", "render scene.json", "scene.json: /objects/0/materal: unknown key"},
     BadRun{"wrong type", R"({"camera": {"width": "wide"}})", "render scene.json", "scene.json: /camera/width: expected a number"},
