@@ -1,5 +1,7 @@
 // NFF import: each entity mapped to glint's scene, polygons triangulated, and every malformed
 // input reported with its file and line.
+#include "test_scenes.h"
+
 #include "trace/polygon.h"
 #include "trace/scene_loader.h"
 #include "trace/world.h"
@@ -237,12 +239,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadNff{"resolution 0", "v from 0 0 1 at 0 0 0 up 0 1 0 angle 40 hither 1\nresolution 0 8",
                "2: resolution's width must be between 1"},
         BadNff{"two views", kV + kV, "2: a second view"}),
-    [](const auto& info) {
-        std::string name = info.param.what;
-        for (char& c : name)
-            if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-        return name;
-    });
+    [](const auto& info) { return testing::test_name(info.param.what); });
 
 // Every SPD scene copied into tests/data loads, with the counts its README gives.
 TEST(Nff, SpdScenesLoadWithTheirPrimitiveCounts) {

@@ -1,5 +1,7 @@
 // OBJ import: meshes, normals and MTL materials read, concave faces triangulated, the same file
 // placed many times stored once, and every malformed line reported with its file and line.
+#include "test_scenes.h"
+
 #include "trace/obj_loader.h"
 #include "trace/polygon.h"
 #include "trace/scene_loader.h"
@@ -113,12 +115,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadObj{"unknown statement", kTri + "\n\nbogus 1 2\n", "m.obj:6: unknown statement 'bogus'"},
         BadObj{"binary", std::string("v 0 0 0\n\x01\x02\x03\n", 11), "m.obj:2: unknown statement"},
         BadObj{"no faces", kTri, "m.obj:4: no faces"}),
-    [](const auto& info) {
-        std::string name = info.param.what;
-        for (char& c : name)
-            if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-        return name;
-    });
+    [](const auto& info) { return testing::test_name(info.param.what); });
 
 TEST(Obj, NegativeIndicesCountBackAndAMissingLibraryIsANote) {
     const ObjModel model = parse("mtllib nowhere.mtl\n" + kTri + "usemtl x\nf -3 -2 -1\n");
