@@ -39,8 +39,14 @@ class KdTree {
         } stack[128];
         int top = 0;
         std::uint32_t node = 0;
+        // Whether a lies before b by more than rounding. Segment ends are plane crossings
+        // computed in float, each off by a few ulps; far from the planes (a ray 1e15 long past
+        // a leaf 0.3 across, found by fuzz_nff) the crossings of neighbouring planes round
+        // together, and exact comparisons skipped the leaf of a sphere the list hits. So a
+        // child is skipped, and a segment pruned, only when it is clearly beyond.
+        const auto before = [](Real a, Real b) { return a * (1.0_r + 4.0_r * gamma(3)) < b; };
         for (;;) {
-            if (t_max < t_min) { // the best hit lies before this segment
+            if (before(t_max, t_min)) { // the best hit lies before this segment
                 if (top == 0) return;
                 const Segment s = stack[--top];
                 node = s.node, t_min = s.t_min, t_end = s.t_max;
@@ -68,9 +74,9 @@ class KdTree {
                 continue;
             }
             const Real t_plane = (n.split - o) * inverse_direction[a];
-            if (t_plane > t_end || t_plane <= 0) {
+            if (before(t_end, t_plane) || t_plane <= 0) {
                 node = first;
-            } else if (t_plane < t_min) {
+            } else if (before(t_plane, t_min)) {
                 node = second;
             } else {
                 stack[top++] = {second, t_plane, t_end};
