@@ -66,11 +66,23 @@ World::World(const Scene& scene, std::optional<AccelKind> accel)
 // for objects thinner than float resolves at their distance from the camera (a cone squashed to
 // 1e-8 at 8 units, found by fuzz_scene): their object-space rays are noise, and their "hits" can
 // lie far outside their box.
+// Box tests against a limit use it widened by rounding (loose): a box's entry distance and a
+// hit's distance are computed by different formulas, so an object hit at exactly the best t so
+// far may have a box entry a few ulps beyond it. Without the slack, whether such a tie was seen
+// depended on the order a structure visited objects in (fuzz_nff: spheres 0.15 across, seen
+// from 1e15 away, where the list and the BVH broke a tie differently).
+namespace {
+Real loose(Real t) {
+    return t * (1.0_r + 8.0_r * gamma(3));
+}
+} // namespace
+
 template <class Counters>
 ShapeHit World::intersect_object(const Object& object, const Ray& world_ray, const LazySlab& slab,
                                  Real t_max, bool box_tested, Counters& counters) const {
     const ShapeHit hit = intersect_shape(object, world_ray, t_max, counters);
-    if (hit.found() && object.bounded && !box_tested && !slab.get().hits(object.bounds, t_max))
+    if (hit.found() && object.bounded && !box_tested &&
+        !slab.get().hits(object.bounds, loose(t_max)))
         return {};
     return hit;
 }
@@ -117,11 +129,12 @@ Hit World::closest(const Ray& ray, Real t_max, std::uint32_t skip, Counters& cou
             best = {h.t, object, h.part};
     };
     for (const std::uint32_t object : unbounded_) counters.primitive(), consider(object);
-    Real limit = best.t;
+    Real limit = loose(best.t);
     accel_.traverse(ray, limit, counters, [&](std::uint32_t item, Real& t_limit) {
         consider(bounded_[item]);
-        // Let the structure prune only beyond the best hit (ties at best.t must still be seen).
-        t_limit = best.found() ? std::nextafter(best.t, kInfinity) : best.t;
+        // Let the structure prune only beyond the best hit, loosely: ties at best.t must still
+        // be seen.
+        t_limit = loose(best.t);
         return false;
     });
     return best;
