@@ -176,46 +176,30 @@ TEST_P(AccelTest, RendersAreByteIdenticalToTheListForAnObjectThinnerThanFloatRes
               render(World(scene, AccelKind::list)).image.rgb);
 }
 
-TEST_P(AccelTest, RendersAreByteIdenticalToTheListForARayLongerThanFloatResolvesItsLeaves) {
-    // Found by fuzz/nff_fuzzer.cpp (fuzz/seeds/nff/kd-far-leaf.nff): the camera inside a sphere
-    // of radius 1e15, whose reflections bounce 2e15 across it past spheres 0.15 in radius. At
-    // that distance the crossings of neighbouring split planes round together, and the kd-tree,
-    // comparing them exactly, skipped a leaf whose sphere the list hits. It now skips a child
-    // only when it is beyond the segment by more than rounding.
-    Scene scene = parse_nff(R"(b 0.2 0.05 0.2
-        v from 0 0 -8 at 0 0 0 up 0 1 0 angle 25 hither 0.001 resolution 256 256
-        l -10 3 -20
-        f 0.737 0.561 0.561 0.7 0.7 11.1434 0 1
-        c -0.704769 -0.128258 -0.222149 0.075 0.70479 6201.8528 0.222149 0.075
-        c 0 -0.649519 0.375 0.075 0 0.649519 -0.375 0.075
-        c 0.256515 -0.352385 -0.610348 0.075 -0.256515 0.352385 0.610348 0.075
-        s 0.704769 0.128258 0.222149 0.15
-        s 0 0.649519 -0.375 0.15
-        s 0.256515 -0.352385 -0.610348 1e15)",
-                            "kd-far-leaf.nff");
-    scene.camera.width = 12, scene.camera.height = 9; // as the fuzzer renders it
-    EXPECT_EQ(render(World(scene, GetParam())).image.rgb,
+// A fuzz_nff seed rendered as the fuzzer renders it (12×9, one thread) with `accel`, and with
+// the list.
+void expect_list_image(const char* seed, AccelKind accel) {
+    Scene scene = load_scene(std::string(GLINT_SOURCE_DIR "/fuzz/seeds/nff/") + seed);
+    scene.camera.width = 12, scene.camera.height = 9;
+    EXPECT_EQ(render(World(scene, accel)).image.rgb,
               render(World(scene, AccelKind::list)).image.rgb);
 }
 
+TEST_P(AccelTest, RendersAreByteIdenticalToTheListForARayLongerThanFloatResolvesItsLeaves) {
+    // Found by fuzz/nff_fuzzer.cpp: the camera inside a sphere of radius 1e15, whose
+    // reflections bounce 2e15 across it past spheres 0.15 in radius. At that distance the
+    // crossings of neighbouring split planes round together, and the kd-tree, comparing them
+    // exactly, skipped a leaf whose sphere the list hits. It now skips a child only when it is
+    // beyond the segment by more than rounding.
+    expect_list_image("kd-far-leaf.nff", GetParam());
+}
+
 TEST_P(AccelTest, TiesAtTheBestDistanceAreSeenWhateverTheVisitingOrder) {
-    // Found by fuzz/nff_fuzzer.cpp (fuzz/seeds/nff/bvh-tie.nff): a reflected ray 1e15 long hits
-    // two tubes at the same float distance. The list saw the lower index first; the BVH saw the
-    // other first and then pruned the first tube's box, whose entry rounded a few ulps beyond
-    // that distance. Box tests against the best distance now allow for rounding.
-    Scene scene = parse_nff(R"(b 0.2 0.05 0.2
-        v from 0 0 -8 at 0 0 0 up 0 1 0 angle 25 hither 0.001 resolution 256 256
-        l -10 3 -20
-        f 0.737 0.561 0.561 0.7 0.7 11.1434 0 1
-        c -0.704769 -0.128258 -0.222149 0.075 0.70479 6201.8528 0.222149 0.075
-        c 0 -0.649519 0.375 0.075 0 0.649519 -0.375 0.075
-        c 0.228257 -0.352385 -0.610348 0.075 -0.256515 0.352385 0.610348 0.075
-        s 0.704769 0.128258 0.252149 0.15
-        s 0.256515 -0.352385 -0.610348 1e15)",
-                            "bvh-tie.nff");
-    scene.camera.width = 12, scene.camera.height = 9; // as the fuzzer renders it
-    EXPECT_EQ(render(World(scene, GetParam())).image.rgb,
-              render(World(scene, AccelKind::list)).image.rgb);
+    // Found by fuzz/nff_fuzzer.cpp: a reflected ray 1e15 long hits two tubes at the same float
+    // distance. The list saw the lower index first; the BVH saw the other first and then pruned
+    // the first tube's box, whose entry rounded a few ulps beyond that distance. Box tests
+    // against the best distance now allow for rounding.
+    expect_list_image("bvh-tie.nff", GetParam());
 }
 
 TEST_P(AccelTest, HandlesEmptySingleAndDegenerateSets) {
