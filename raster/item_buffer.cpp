@@ -90,12 +90,6 @@ struct ItemBuffer::Impl {
         bool proxy;           // intersect in the fragment shader
         bool full_screen;     // planes: no geometry at all
     };
-    // Every object drawn with one geometry (a mesh, or the tessellation of one shape): one
-    // instanced draw, each instance's transform, id and colour read from `instance_buffer`.
-    struct Batch {
-        std::size_t geometry;
-        std::vector<std::uint32_t> objects;
-    };
     // One instance's attributes (item.vert, locations 1 to 10).
     struct Instance {
         glm::mat4 model_view_projection; // computed in double, as for single draws
@@ -110,7 +104,10 @@ struct ItemBuffer::Impl {
     int width = 0, height = 0;
     std::vector<Geometry> geometries;
     std::vector<DrawItem> items;
-    std::vector<Batch> batches;
+    // Per geometry, the objects drawn with it (a mesh, or the tessellation of one shape): one
+    // instanced draw, each instance's transform, id and colour read from `instance_buffer`.
+    // Geometries drawn one by one (proxies) have none.
+    std::vector<std::vector<std::uint32_t>> instances_of;
 
     ~Impl() {
         for (const Geometry& g : geometries) release(g);
@@ -154,12 +151,11 @@ struct ItemBuffer::Impl {
     }
 
     void add_instance(std::size_t geometry, std::uint32_t object) {
-        for (Batch& b : batches)
-            if (b.geometry == geometry) return b.objects.push_back(object);
-        batches.push_back({geometry, {object}});
+        if (geometry >= instances_of.size()) instances_of.resize(geometry + 1);
+        instances_of[geometry].push_back(object);
     }
 
-    // Points a batch's VAO at its instances' records (divisor 1) in the bound instance buffer.
+    // Points a geometry's VAO at its instances' records (divisor 1) in the bound instance buffer.
     static void bind_instances(std::size_t first) {
         const auto stride = static_cast<GLsizei>(sizeof(Instance));
         const auto at = [&](std::size_t offset) {
@@ -321,7 +317,7 @@ void ItemBuffer::upload(const World& world, RasterMode mode, int tessellation) {
     for (const auto& g : gl.geometries) Impl::release(g);
     gl.geometries.clear();
     gl.items.clear();
-    gl.batches.clear();
+    gl.instances_of.clear();
     std::map<std::uint32_t, std::size_t> mesh_geometry; // each mesh uploaded once
     deviations_.assign(world.objects().size(), 0.0f);
     // One tessellation per distinct shape (cones: per top radius; open or capped), shared by every
@@ -452,12 +448,12 @@ ItemBufferResult ItemBuffer::draw(const World& world, bool flat_preview) {
             glDrawElements(GL_TRIANGLES, g.index_count, GL_UNSIGNED_INT, nullptr);
         }
     }
-    if (!gl.batches.empty()) {
+    if (!gl.instances_of.empty()) {
         // Every tessellated shape and mesh: one instanced draw per geometry, with the instances'
         // matrices composed in double as above, then uploaded in one buffer.
         std::vector<Impl::Instance> instances;
-        for (const Impl::Batch& batch : gl.batches)
-            for (const std::uint32_t object : batch.objects) {
+        for (const std::vector<std::uint32_t>& objects : gl.instances_of)
+            for (const std::uint32_t object : objects) {
                 const Object& o = world.objects()[object];
                 const glm::dmat4 model = to_mat4(o.transform.linear, o.transform.offset);
                 instances.push_back({glm::mat4(clip * model), glm::mat4(model), object + 1,
@@ -477,13 +473,14 @@ ItemBufferResult ItemBuffer::draw(const World& world, bool flat_preview) {
         glUniform1i(uniform("full_screen"), 0);
         glUniform1ui(uniform("primitive_base"), 0);
         std::size_t first = 0;
-        for (const Impl::Batch& batch : gl.batches) {
-            const Impl::Geometry& g = gl.geometries[batch.geometry];
-            glBindVertexArray(g.vao);
+        for (std::size_t geometry = 0; geometry < gl.instances_of.size(); ++geometry) {
+            const std::size_t count = gl.instances_of[geometry].size();
+            if (count == 0) continue;
+            glBindVertexArray(gl.geometries[geometry].vao);
             Impl::bind_instances(first);
-            glDrawElementsInstanced(GL_TRIANGLES, g.index_count, GL_UNSIGNED_INT, nullptr,
-                                    static_cast<GLsizei>(batch.objects.size()));
-            first += batch.objects.size();
+            glDrawElementsInstanced(GL_TRIANGLES, gl.geometries[geometry].index_count,
+                                    GL_UNSIGNED_INT, nullptr, static_cast<GLsizei>(count));
+            first += count;
         }
     }
     glBindVertexArray(0);
