@@ -40,9 +40,7 @@ fs::path SceneOptions::scene_path() const {
 }
 
 Scene SceneOptions::load() const {
-    Scene loaded = load_scene(scene_path());
-    for (const std::string& note : loaded.notes)
-        std::cerr << "glint: note: " << scene_path().string() << ": " << note << '\n';
+    Scene loaded = load_scene_with_notes(scene_path());
     if (!size.empty())
         std::tie(loaded.camera.width, loaded.camera.height) = parse_size(size, "--size");
     if (max_depth_option->count()) loaded.render.max_depth = max_depth;
@@ -198,6 +196,13 @@ int guarded(const std::function<int()>& body) {
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+Scene load_scene_with_notes(const std::filesystem::path& path) {
+    Scene scene = load_scene(path);
+    for (const std::string& note : scene.notes)
+        std::cerr << "glint: note: " << path.string() << ": " << note << '\n';
+    return scene;
 }
 
 } // namespace glint

@@ -67,6 +67,10 @@ void create_output_directory(const std::filesystem::path& output);
 // `frames`: how many frames of this size are alive at once.
 void check_frame_memory(const Camera& camera, Mode mode, int frames);
 
+// Loads a scene (JSON or NFF) and prints what the loader left out or changed ("glint: note: …"
+// on stderr), as every command that renders a scene does.
+Scene load_scene_with_notes(const std::filesystem::path& path);
+
 // Runs a command body, turning exceptions into glint's exit codes and one-line messages:
 // bad input 2, anything else 1.
 int guarded(const std::function<int()>& body);

@@ -434,7 +434,7 @@ std::vector<SceneResult> prepare(const TradeoffArgs& args) {
     if (!args.summary.empty()) check_output(args.summary, "--summary"); // else inside -o
     std::vector<SceneResult> results;
     for (const fs::path& path : scene_paths(args)) {
-        SceneResult sr{path.stem().string(), path, load_scene(path), {}, {}, 0};
+        SceneResult sr{path.stem().string(), path, load_scene_with_notes(path), {}, {}, 0};
         if (!args.size.empty())
             std::tie(sr.scene.camera.width, sr.scene.camera.height) =
                 parse_size(args.size, "--size");
@@ -512,7 +512,8 @@ Command add_tradeoff_command(CLI::App& app) {
     auto args = std::make_shared<TradeoffArgs>();
     CLI::App* cmd = app.add_subcommand(
         "tradeoff", "Sweep the speed/accuracy knobs against the exact image: CSV, plots, summary");
-    cmd->add_option("scenes", args->scenes, "Scene files (JSON or .nff); default every scene in scenes/");
+    cmd->add_option("scenes", args->scenes,
+                    "Scene files (JSON or .nff); default every scene in scenes/");
     cmd->add_option("-o,--output", args->output, "Directory for tradeoff.csv and the plots")
         ->capture_default_str();
     cmd->add_option("--summary", args->summary, "Markdown summary; default OUTPUT/summary.md");
