@@ -20,12 +20,20 @@ UniformGrid::UniformGrid(std::span<const Bounds> items) {
         cell_size_[a] = extent[a] / static_cast<Real>(resolution_[a]);
         inverse_cell_[a] = 1.0_r / cell_size_[a];
     }
+    // A sixty-fourth of a cell lists an item in a neighbour only when it nearly touches it (9%
+    // more item tests on rings-3 than none) and covers the rounding of rays cast from up to
+    // about 5,000 cells away (grid.h); rays from farther test every item.
+    rounding_ = 8.0_r * gamma(3) * (glm::abs(bounds_.lo) + glm::abs(bounds_.hi));
+    margin_ = cell_size_ / 64.0_r + 2.0_r * rounding_;
+    item_count_ = static_cast<std::uint32_t>(items.size());
     const std::size_t cells =
         static_cast<std::size_t>(resolution_.x) * resolution_.y * resolution_.z;
     const auto cell_range = [&](const Bounds& b, glm::ivec3& lo, glm::ivec3& hi) {
         for (int a = 0; a < 3; ++a) {
-            lo[a] = bin_index((b.lo[a] - bounds_.lo[a]) * inverse_cell_[a], resolution_[a]);
-            hi[a] = bin_index((b.hi[a] - bounds_.lo[a]) * inverse_cell_[a], resolution_[a]);
+            lo[a] = bin_index((b.lo[a] - margin_[a] - bounds_.lo[a]) * inverse_cell_[a],
+                              resolution_[a]);
+            hi[a] = bin_index((b.hi[a] + margin_[a] - bounds_.lo[a]) * inverse_cell_[a],
+                              resolution_[a]);
         }
     };
     // Two passes (count, then fill) into compressed rows.
