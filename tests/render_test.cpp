@@ -5,6 +5,7 @@
 #include "trace/render.h"
 
 #include <gtest/gtest.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -171,6 +172,43 @@ TEST(Output, AFailedWriteLeavesTheOldFileAndNoTemporaryFile) {
     std::string text;
     in >> text;
     EXPECT_EQ(text, "new");
+}
+
+TEST(Output, PngsDecodeToEveryPixelWrittenAtSizesThatSplitIntoBands) {
+    // write_png deflates bands of 64 rows in parallel into one zlib stream (trace/image.cpp).
+    // Each image must come back byte for byte through an independent decoder (stb_image), and
+    // its stream must pass zlib's own checks (uncompress verifies the combined Adler-32).
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::path(::testing::TempDir()) / "glint_png_test";
+    fs::create_directories(dir);
+    std::mt19937 rng(7);
+    for (const auto& [w, h] : {std::pair{1, 1}, {3, 63}, {5, 64}, {2, 65}, {257, 130}, {40, 200}}) {
+        Image image(w, h);
+        for (std::size_t i = 0; i < image.rgb.size(); ++i)
+            image.rgb[i] = static_cast<std::uint8_t>(i % 7 == 0 ? rng() : i / 5);
+        const fs::path path = dir / ("p" + std::to_string(w) + "x" + std::to_string(h) + ".png");
+        write_png(path, image);
+        const Image back = read_png(path);
+        EXPECT_EQ(back.width, w);
+        EXPECT_EQ(back.height, h);
+        EXPECT_EQ(back.rgb, image.rgb) << w << "x" << h;
+
+        const std::string png = encode_png(image);
+        const std::size_t idat = 8 + 25; // signature and IHDR
+        ASSERT_EQ(png.substr(idat + 4, 4), "IDAT");
+        const auto length =
+            static_cast<std::uint32_t>(static_cast<unsigned char>(png[idat]) << 24 |
+                                       static_cast<unsigned char>(png[idat + 1]) << 16 |
+                                       static_cast<unsigned char>(png[idat + 2]) << 8 |
+                                       static_cast<unsigned char>(png[idat + 3]));
+        std::vector<Bytef> raw(static_cast<std::size_t>(w * 3 + 1) * h);
+        uLongf raw_size = static_cast<uLongf>(raw.size());
+        EXPECT_EQ(uncompress(raw.data(), &raw_size,
+                             reinterpret_cast<const Bytef*>(png.data() + idat + 8), length),
+                  Z_OK)
+            << w << "x" << h;
+        EXPECT_EQ(raw_size, raw.size());
+    }
 }
 
 TEST(Render, RayCountsAddUp) {

@@ -39,6 +39,9 @@ void write_file_atomically(const std::filesystem::path& path, const std::string&
 
 void write_png(const std::filesystem::path& path, const Image& image);
 
+// The PNG file write_png writes: 8-bit RGB, deflated in parallel bands.
+std::string encode_png(const Image& image);
+
 // Throws std::runtime_error naming the path when it cannot be read as an image.
 Image read_png(const std::filesystem::path& path);
 
