@@ -66,16 +66,7 @@ World::World(const Scene& scene, std::optional<AccelKind> accel)
 // for objects thinner than float resolves at their distance from the camera (a cone squashed to
 // 1e-8 at 8 units, found by fuzz_scene): their object-space rays are noise, and their "hits" can
 // lie far outside their box.
-// Box tests against a limit use it widened by rounding (loose): a box's entry distance and a
-// hit's distance are computed by different formulas, so an object hit at exactly the best t so
-// far may have a box entry a few ulps beyond it. Without the slack, whether such a tie was seen
-// depended on the order a structure visited objects in (fuzz_nff: spheres 0.15 across, seen
-// from 1e15 away, where the list and the BVH broke a tie differently).
-namespace {
-Real loose(Real t) {
-    return t * (1.0_r + 8.0_r * gamma(3));
-}
-} // namespace
+// Box tests against a limit use it widened by rounding (loose(), trace/math.h).
 
 template <class Counters>
 ShapeHit World::intersect_object(const Object& object, const Ray& world_ray, const LazySlab& slab,

@@ -101,25 +101,28 @@ inline Mesh prepare_mesh(const TriangleMesh& given) {
     return mesh;
 }
 
-// The nearest triangle: through the mesh's own BVH (the bottom level of a two-level structure),
-// or, for meshes too small to have one, all of them.
+// The nearest triangle below t_max: through the mesh's own BVH (the bottom level of a two-level
+// structure), or, for meshes too small to have one, all of them. Boxes are pruned against the
+// limit loosely (loose(), trace/math.h), triangles strictly.
 template <class Counters>
 ShapeHit intersect_mesh(const Mesh& mesh, const Ray& ray, Real t_max, Counters& counters) {
     ShapeHit best;
     const WatertightRay prepared(ray); // once per ray, not per triangle
-    const auto test = [&](std::uint32_t i, Real& limit) {
+    Real limit = t_max;
+    const auto test = [&](std::uint32_t i, Real& box_limit) {
         const std::array<Vec3, 3>& c = mesh.corners[i];
         const TriangleHit h = intersect_triangle(c[0], c[1], c[2], prepared);
         if (h.t > 0 && h.t < limit && h.t < best.t) best = {h.t, i}, limit = h.t;
+        box_limit = loose(limit);
         return false;
     };
-    Real limit = t_max;
+    Real box_limit = loose(t_max);
     if (!mesh.bvh.nodes().empty()) {
-        mesh.bvh.traverse(ray, limit, counters, test);
+        mesh.bvh.traverse(ray, box_limit, counters, test);
     } else {
-        if (!SlabRay(ray).hits(mesh.bounds, t_max)) return {};
+        if (!SlabRay(ray).hits(mesh.bounds, box_limit)) return {};
         for (std::uint32_t i = 0; i < mesh.triangles.size(); ++i)
-            counters.primitive(), test(i, limit);
+            counters.primitive(), test(i, box_limit);
     }
     return best;
 }
