@@ -123,14 +123,11 @@ std::string encode_png(const Image& image) {
     });
     std::string idat = "\x78\x01"; // zlib header: deflate, 32 KiB window, fastest
     uLong adler = adler32(0, nullptr, 0);
-    const std::size_t band_bytes = (static_cast<std::size_t>(image.width) * 3 + 1) * kRowsPerBand;
+    const std::size_t row_bytes = static_cast<std::size_t>(image.width) * 3 + 1; // filter byte
     for (int b = 0; b < bands; ++b) {
         idat += deflated[b];
-        const std::size_t length =
-            b == bands - 1 ? (static_cast<std::size_t>(image.width) * 3 + 1) *
-                                 static_cast<std::size_t>(image.height - b * kRowsPerBand)
-                           : band_bytes;
-        adler = adler32_combine(adler, adlers[b], static_cast<z_off_t>(length));
+        const int rows = std::min(image.height, (b + 1) * kRowsPerBand) - b * kRowsPerBand;
+        adler = adler32_combine(adler, adlers[b], static_cast<z_off_t>(row_bytes * rows));
     }
     put_u32(idat, static_cast<std::uint32_t>(adler));
 

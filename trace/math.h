@@ -60,8 +60,10 @@ constexpr Real gamma(int n) {
 // coplanar quads 24 across, 0.8 away, whose triangles' distances were 40 ulps from their box's
 // entry (a triangle's t errs by about its size over its distance in ulps: pbrt-v4's deltaT), so
 // a mesh's box, pruned against the other quad's hit, hid the nearer triangle from the list
-// but not from the BVH. 2⁻¹² covers triangles a thousand times larger than their distance,
-// and costs nothing measurable: few boxes are entered within 0.025% beyond the best hit.
+// but not from the BVH. 2⁻¹² covers triangles a thousand times larger than their distance.
+// What it costs is boxes entered within 0.025% beyond the best hit: with meshes pruning this
+// way too, gears-4 (many coplanar triangles) rendered ~4% slower, balls-4 and teapot-12 no
+// slower (`glint render … --mode ray --size 1920x1080 --stats s.json`, builds alternated).
 inline Real loose(Real t) {
     return t * (1.0_r + 0x1p-12_r);
 }

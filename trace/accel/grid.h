@@ -92,7 +92,6 @@ class UniformGrid {
         return glm::all(glm::lessThanEqual(error + rounding_, margin_));
     }
 
-  private:
     Bounds bounds_;
     glm::ivec3 resolution_{0};
     Vec3 cell_size_{0.0_r}, inverse_cell_{0.0_r};
