@@ -125,6 +125,19 @@ TEST(Obj, NegativeIndicesCountBackAndAMissingLibraryIsANote) {
     EXPECT_NE(model.notes[0].find("'nowhere.mtl' cannot be read"), std::string::npos);
 }
 
+TEST(Obj, TinyobjloaderReadsOnlyTheStatementsThatWereChecked) {
+    // Found by fuzz_obj (a heap overflow under ASan): the checker cut "f 1 2 3# 4 5 99" at the
+    // '#', but tinyobjloader, which takes '#' as a comment only at the start of a line, read
+    // index 99 of 3 vertices. It likewise ends a line at a lone '\r', so a face hidden in a
+    // group name reached it unchecked. It now reads the checked text.
+    const ObjModel comment = parse(kTri + "f 1 2 3# 4 5 99\n");
+    ASSERT_EQ(comment.parts.size(), 1u);
+    EXPECT_EQ(comment.parts[0].mesh.triangles.size(), 1u);
+    const ObjModel carriage_return = parse(kTri + "g a\rf 1 2 99\nf 1 2 3\n");
+    ASSERT_EQ(carriage_return.parts.size(), 1u);
+    EXPECT_EQ(carriage_return.parts[0].mesh.triangles.size(), 1u);
+}
+
 // From a JSON scene: the error names the scene, the object's file key, then the OBJ and line.
 TEST(Obj, ErrorsThroughASceneNameBothFiles) {
     const auto dir = std::filesystem::temp_directory_path() / "glint_obj_test";
