@@ -213,6 +213,15 @@ TEST_P(AccelTest, OverlappingCoplanarMeshesShowTheNearerWhateverTheVisitingOrder
     expect_list_image("coplanar-quads.nff", GetParam(), 120, 90);
 }
 
+TEST_P(AccelTest, AnOccluderAtTheFarEndOfAVeryLongShadowRayIsSeenByEveryStructure) {
+    // Found by fuzz/nff_fuzzer.cpp, minimised: a point on a sphere of radius 2.3e9 casts its
+    // shadow ray 2e9 long past a thin cone near the light, hit at t = 1 − 1 ulp. The list tested
+    // the cone's box against t_max = 1 first, and its entry rounded beyond 1; the BVH checked
+    // the same box after the hit, loosely, and counted the cone. Occlusion now tests boxes
+    // loosely in every structure.
+    expect_list_image("shadow-box-at-segment-end.nff", GetParam(), 12, 3);
+}
+
 TEST_P(AccelTest, RendersAreByteIdenticalToTheListWhereFloatBarelyResolvesTheGridsFaces) {
     // Found by fuzz/nff_fuzzer.cpp in an SPD tree, minimised: one cone's radius mutated to 2e7
     // stretches the grid to ±2e7, where float spaces coordinates 2 apart, and puts a cell face
