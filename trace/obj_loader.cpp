@@ -58,11 +58,12 @@ class LineChecker {
             if (const std::size_t hash = l.find('#'); hash != std::string_view::npos)
                 l = l.substr(0, hash);
             if (!l.empty() && l.back() == '\r') l.remove_suffix(1);
-            // tinyobjloader ends a line at a lone '\r' too; a blank keeps the lines the same.
-            std::string checked(l);
-            std::replace(checked.begin(), checked.end(), '\r', ' ');
-            statement(split(checked), line);
-            clean += checked;
+            // Checked as appended to `clean`; tinyobjloader ends a line at a lone '\r' too, and
+            // a blank keeps the lines the same.
+            const std::size_t from = clean.size();
+            clean += l;
+            std::replace(clean.begin() + static_cast<std::ptrdiff_t>(from), clean.end(), '\r', ' ');
+            statement(split(std::string_view(clean).substr(from)), line);
             clean += '\n';
             start = end + 1;
         }
@@ -212,6 +213,9 @@ ObjModel parse_obj(const std::string& text, const std::string& name,
     const tinyobj::attrib_t& attrib = reader.GetAttrib();
     const std::vector<tinyobj::material_t>& materials = reader.GetMaterials();
 
+    const auto within = [](int index, const std::vector<tinyobj::real_t>& xyz) {
+        return index >= 0 && 3 * static_cast<std::size_t>(index) + 2 < xyz.size();
+    };
     std::map<int, PartBuilder> parts; // by MTL material (−1: none)
     std::size_t degenerate = 0;
     for (const tinyobj::shape_t& shape : reader.GetShapes()) {
@@ -230,9 +234,6 @@ ObjModel parse_obj(const std::string& text, const std::string& name,
                 const tinyobj::index_t& i = mesh.indices[offset + k];
                 // The checker bounded every index; this guards memory should the two readers
                 // ever disagree again.
-                const auto within = [](int index, const std::vector<tinyobj::real_t>& xyz) {
-                    return index >= 0 && 3 * static_cast<std::size_t>(index) + 2 < xyz.size();
-                };
                 if (!within(i.vertex_index, attrib.vertices) ||
                     (i.normal_index >= 0 && !within(i.normal_index, attrib.normals)))
                     throw SceneError(name + ": a face index is beyond the vertices or normals");

@@ -21,8 +21,8 @@ UniformGrid::UniformGrid(std::span<const Bounds> items) {
         inverse_cell_[a] = 1.0_r / cell_size_[a];
     }
     // A sixty-fourth of a cell lists an item in a neighbour only when it nearly touches it (9%
-    // more item tests on rings-3 than none) and covers the rounding of rays cast from up to
-    // about 5,000 cells away (grid.h); rays from farther test every item.
+    // more item tests on rings-3 than none, docs/PERFORMANCE.md) and covers the rounding of rays
+    // cast from up to about 5,000 cells away (grid.h); rays from farther test every item.
     rounding_ = 8.0_r * gamma(3) * (glm::abs(bounds_.lo) + glm::abs(bounds_.hi));
     margin_ = cell_size_ / 64.0_r + 2.0_r * rounding_;
     item_count_ = static_cast<std::uint32_t>(items.size());
