@@ -168,6 +168,10 @@ struct BadRun {
     const char* message;
 };
 
+void PrintTo(const BadRun& bad, std::ostream* out) {
+    *out << bad.what;
+}
+
 class BadRunTest : public ::testing::TestWithParam<BadRun> {};
 
 TEST_P(BadRunTest, ExitsTwoWithItsMessageAndWritesNothing) {

@@ -247,6 +247,11 @@ struct SceneCase {
     Resolve resolve;
 };
 
+void PrintTo(const SceneCase& c, std::ostream* out) {
+    *out << c.scene << ", --raster " << raster_mode_name(c.raster) << ", --resolve "
+         << (c.resolve == Resolve::exact ? "exact" : "trust");
+}
+
 class HybridTest : public ::testing::TestWithParam<SceneCase> {};
 
 TEST_P(HybridTest, HybridImageAgreesWithRayImage) {

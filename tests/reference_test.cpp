@@ -251,7 +251,8 @@ TEST(Reference, NoShadowOrReflectionAcneWhereMillimetreAndKilometreObjectsMeet) 
     EXPECT_GT(reflected, compared / 2) << "the floor and the small objects all reflect";
 }
 
-INSTANTIATE_TEST_SUITE_P(RandomScenes, ReferenceTest, ::testing::Range(1u, 7u));
+INSTANTIATE_TEST_SUITE_P(RandomScenes, ReferenceTest, ::testing::Range(1u, 7u),
+                         [](const auto& info) { return "seed_" + std::to_string(info.param); });
 
 } // namespace
 } // namespace glint

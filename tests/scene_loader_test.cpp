@@ -56,6 +56,10 @@ struct BadScene {
     const char* message; // expected in the error, after "bad.json: "
 };
 
+void PrintTo(const BadScene& bad, std::ostream* out) {
+    *out << bad.what;
+}
+
 class BadSceneTest : public ::testing::TestWithParam<BadScene> {};
 
 TEST_P(BadSceneTest, IsRejectedWithFileAndPlace) {

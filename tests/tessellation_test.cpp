@@ -17,6 +17,11 @@ struct Case {
     float top_radius;
 };
 
+void PrintTo(const Case& c, std::ostream* out) {
+    *out << shape_name(c.shape);
+    if (c.top_radius > 0) *out << " (top_radius " << c.top_radius << ")";
+}
+
 // A point on the true unit surface from two uniform numbers.
 Vec3 surface_point(ShapeKind shape, float top, float a, float b) {
     const float phi = 6.2831853f * a;
