@@ -143,11 +143,14 @@ int run_render(const RenderArgs& args) {
     if (cutoff.largest_omitted_weight == 0)
         std::printf("reflection cut-off: no reflection ray omitted\n");
     else
-        std::printf("reflection cut-off (max depth %d, min reflectivity %g): every pixel within "
-                    "%d/255 of the untruncated image, %llu may be off by more than 1/255 "
-                    "(heaviest omitted path weight %.3g)\n",
+        // A worst case from the brightest the scene could be (trace/cutoff.h), not a measured
+        // error: said so, since a large bound on a bright mirror scene is usual, not an alarm.
+        std::printf("reflection cut-off (max depth %d, min reflectivity %g): reflections not "
+                    "followed could make %llu pixels brighter by more than 1/255, none by more "
+                    "than %d/255 (a worst-case bound, not a measured error; heaviest omitted path "
+                    "weight %.3g)\n",
                     scene.render.max_depth, static_cast<double>(scene.render.min_reflectivity),
-                    cutoff.max, static_cast<unsigned long long>(cutoff.pixels_over_one),
+                    static_cast<unsigned long long>(cutoff.pixels_over_one), cutoff.max,
                     cutoff.largest_omitted_weight);
     return 0;
 }
