@@ -3,7 +3,7 @@
 #pragma once
 
 #include "app/commands.h"
-#include "app/frame.h"
+#include "frame/frame.h"
 
 #include "trace/scene.h"
 

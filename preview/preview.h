@@ -3,7 +3,7 @@
 // while the UI thread keeps handling input. Any change of camera or setting restarts the trace.
 #pragma once
 
-#include "app/frame.h"
+#include "frame/frame.h"
 #include "preview/views.h"
 #include "trace/scene.h"
 

@@ -3,7 +3,7 @@
 // the GL round trip beyond 2^24. Run for both OSMesa and EGL.
 #include "test_scenes.h"
 
-#include "app/frame.h"
+#include "frame/frame.h"
 #include "raster/tessellation.h"
 #include "trace/image_metrics.h"
 

@@ -2,7 +2,7 @@
 // the window's framebuffer, which must show what the headless passes compute.
 #include "test_scenes.h"
 
-#include "app/frame.h"
+#include "frame/frame.h"
 #include "preview/preview.h"
 #include "preview/views.h"
 #include "trace/image_metrics.h"
