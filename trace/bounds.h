@@ -7,7 +7,8 @@
 #include <cmath>
 #include <utility>
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 
 struct Bounds {
     Vec3 lo{kInfinity};
@@ -59,4 +60,5 @@ struct SlabRay {
     bool hits(const Bounds& b, Real t_max) const { return entry(b, t_max) != kInfinity; }
 };
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

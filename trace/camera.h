@@ -4,7 +4,8 @@
 #include "trace/ray.h"
 #include "trace/scene.h"
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 
 class PinholeCamera {
   public:
@@ -37,4 +38,5 @@ class PinholeCamera {
     Vec3 forward_, right_, up_; // right_ and up_ pre-scaled by h·aspect and h
 };
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

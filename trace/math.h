@@ -21,7 +21,8 @@
 #define GLINT_PRECISION f32
 #endif
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 
 #if GLINT_DOUBLE
 using Real = double;
@@ -86,4 +87,5 @@ inline int bin_index(Real bins, int count) {
     return static_cast<int>(bins);
 }
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

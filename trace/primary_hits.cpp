@@ -2,7 +2,8 @@
 
 #include <mutex>
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 
 std::vector<Hit> primary_hits_by_ray(const World& world, const TileProgress& progress) {
     const PinholeCamera& camera = world.camera();
@@ -97,4 +98,5 @@ std::vector<Hit> primary_hits_from_ids(const World& world, const IdImage& ids, R
     return hits;
 }
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

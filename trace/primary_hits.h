@@ -9,7 +9,8 @@
 
 #include <vector>
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 
 // Per pixel, row-major, top row first.
 struct IdImage {
@@ -46,4 +47,5 @@ Hit resolve_pixel(const World& world, const IdImage& ids, Resolve resolve, int x
 std::vector<Hit> primary_hits_from_ids(const World& world, const IdImage& ids, Resolve resolve,
                                        PrimaryStats& stats, const TileProgress& progress = {});
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

@@ -3,7 +3,8 @@
 
 #include "trace/math.h"
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 
 // origin + t·direction. The direction is not required to be unit length: object-space rays
 // keep M⁻¹·d unnormalised so that t means the same point in world and object space.
@@ -24,4 +25,5 @@ struct Hit {
     bool found() const { return object != kNoObject; }
 };
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

@@ -5,7 +5,8 @@
 #include <chrono>
 #include <mutex>
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 
 RenderResult shade_image(const World& world, const std::vector<Hit>& primary,
                          const TileProgress& progress) {
@@ -63,4 +64,5 @@ RayFrame render_ray_frame(const Scene& scene, std::optional<AccelKind> accel,
     return frame;
 }
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

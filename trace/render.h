@@ -7,7 +7,8 @@
 #include "trace/primary_hits.h"
 #include "trace/shading.h"
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 
 // Writes a shaded colour as a pixel's three bytes (trace/image.h's to_byte per channel).
 inline void store_colour(Vec3 c, std::uint8_t* pixel) {
@@ -29,4 +30,5 @@ inline double id_agreement(const std::vector<Hit>& a, const std::vector<Hit>& b)
     return glint::id_agreement(object_ids(a), object_ids(b));
 }
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

@@ -2,7 +2,8 @@
 
 #include <cmath>
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 
 Vec3 shade(const World& world, const Ray& ray, const Hit& hit, int depth, Real weight,
            RayCounts& counts, Real& omitted_weight) {
@@ -46,4 +47,5 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, int depth, Real w
     return colour;
 }
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

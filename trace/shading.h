@@ -5,7 +5,8 @@
 #include "trace/precision.h"
 #include "trace/world.h"
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 
 // Colour seen along `ray` (unclamped), which has already produced `hit` (maybe none).
 // `depth` is the number of reflections before this hit (0 for the primary hit) and `weight` the
@@ -15,4 +16,5 @@ namespace glint::inline GLINT_PRECISION {
 Vec3 shade(const World& world, const Ray& ray, const Hit& hit, int depth, Real weight,
            RayCounts& counts, Real& omitted_weight);
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

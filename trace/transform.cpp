@@ -5,7 +5,8 @@
 #include <cmath>
 #include <cstdio>
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 
 Transform make_transform(const DMat4& m) {
     Transform t;
@@ -105,4 +106,5 @@ Vec3 Transform::roundtrip_error(Vec3 p, Vec3 p_error) const {
     return p_error + back_error + Vec3(roundtrip_linear_error * p_sum + roundtrip_offset_error);
 }
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

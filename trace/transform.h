@@ -7,7 +7,8 @@
 #include "trace/ray.h"
 #include "trace/scene.h"
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 
 // What a transform does, from cheapest to dearest. Decided on the float values actually stored,
 // so a fast path computes exactly what the general path would.
@@ -60,4 +61,5 @@ struct Transform {
 // Rounds a validated M (see why_unusable) to float and classifies it.
 Transform make_transform(const DMat4& m);
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

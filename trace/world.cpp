@@ -9,7 +9,8 @@
 #include <chrono>
 #include <cmath>
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 namespace {
 
 // World bounds of M·(object bounds): the eight corners mapped in double, then widened by a few
@@ -235,4 +236,5 @@ SurfacePoint World::surface(const Ray& ray, const Hit& hit) const {
     return {m.point_to_world(s.point), normal, shading, offset, kNoObject};
 }
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

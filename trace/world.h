@@ -14,7 +14,8 @@
 #include <optional>
 #include <vector>
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 
 struct Object {
     ShapeKind shape;
@@ -131,4 +132,5 @@ class World {
     mutable tbb::enumerable_thread_specific<TraversalCounters> counters_;
 };
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

@@ -1,6 +1,7 @@
 #include "trace/accel/accel.h"
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 
 Accelerator::Accelerator(AccelKind kind, std::vector<Bounds> items) {
     switch (kind) {
@@ -30,4 +31,5 @@ std::size_t Accelerator::node_count() const {
     return std::visit([](const auto& s) { return s.node_count(); }, structure_);
 }
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

@@ -17,7 +17,8 @@
 #include <variant>
 #include <vector>
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 
 // Brute force: every item's box, in order. The reference every other structure must match.
 struct ItemList {
@@ -67,4 +68,5 @@ class Accelerator {
     std::variant<ItemList, Bvh, SphereTree, UniformGrid, KdTree> structure_;
 };
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

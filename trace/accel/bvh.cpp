@@ -5,7 +5,8 @@
 #include <algorithm>
 #include <atomic>
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 namespace {
 
 constexpr int kBins = 16;
@@ -160,4 +161,5 @@ Bvh::Bvh(std::span<const Bounds> item_bounds) {
     nodes_ = std::move(ordered);
 }
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

@@ -8,7 +8,8 @@
 #include <span>
 #include <vector>
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 
 struct BvhNode {
     Bounds bounds;
@@ -82,4 +83,5 @@ class Bvh {
     std::vector<std::uint32_t> items_;
 };
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

@@ -2,7 +2,8 @@
 
 #include <algorithm>
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 
 UniformGrid::UniformGrid(std::span<const Bounds> items) {
     if (items.empty()) return;
@@ -62,4 +63,5 @@ UniformGrid::UniformGrid(std::span<const Bounds> items) {
     }
 }
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

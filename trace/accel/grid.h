@@ -19,7 +19,8 @@
 #include <span>
 #include <vector>
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 
 class UniformGrid {
   public:
@@ -103,4 +104,5 @@ class UniformGrid {
     std::vector<std::uint32_t> cell_items_;
 };
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 namespace {
 
 constexpr int kBins = 32;
@@ -91,4 +92,5 @@ KdTree::KdTree(std::span<const Bounds> item_bounds) {
     Builder{item_bounds, nodes_, items_, max_depth}.build(0, bounds_, std::move(ids), 0);
 }
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

@@ -9,7 +9,8 @@
 #include <span>
 #include <vector>
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 
 struct KdNode {
     Real split;          // inner: plane position on `axis`
@@ -92,4 +93,5 @@ class KdTree {
     std::vector<std::uint32_t> items_;
 };
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

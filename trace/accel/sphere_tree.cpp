@@ -1,6 +1,7 @@
 #include "trace/accel/sphere_tree.h"
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 namespace {
 
 BoundingSphere around(const Bounds& b) {
@@ -35,4 +36,5 @@ SphereTree::SphereTree(std::span<const Bounds> items) : topology_(items) {
     }
 }
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

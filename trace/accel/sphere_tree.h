@@ -7,7 +7,8 @@
 
 #include <cmath>
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 
 struct BoundingSphere {
     Vec3 centre;
@@ -83,4 +84,5 @@ class SphereTree {
     std::vector<BoundingSphere> spheres_; // per node of topology_
 };
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

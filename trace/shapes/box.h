@@ -5,7 +5,8 @@
 
 #include <cmath>
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 
 // Face numbering: part = 2·axis + (1 for the +1 face, 0 for the −1 face).
 inline ShapeHit intersect_box(const Ray& ray, Real t_max) {
@@ -44,4 +45,5 @@ inline SurfaceSample box_surface(Vec3 p, std::uint32_t face) {
     return {p, normal, error};
 }
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

@@ -7,7 +7,8 @@
 
 #include <cmath>
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 
 inline ShapeHit intersect_cone(const Ray& ray, Real top_radius, Real t_max, bool open = false) {
     // x² + z² = (1 − k·y)², k = 1 − top_radius. The quadratic has no closest-approach form like
@@ -59,4 +60,5 @@ inline SurfaceSample cone_surface(Vec3 p, std::uint32_t part, Real top_radius) {
     return {on_side, normal, error};
 }
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

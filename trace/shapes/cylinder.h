@@ -7,7 +7,8 @@
 #include <cmath>
 #include <utility>
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 
 // A hit on the horizontal disk y = height, x²+z² ≤ radius².
 inline ShapeHit intersect_cap(const Ray& ray, Real height, Real radius, Real t_max,
@@ -59,4 +60,5 @@ inline SurfaceSample cylinder_surface(Vec3 p, std::uint32_t part) {
     return {on_side, {on_side.x, 0.0_r, on_side.z}, gamma(5) * glm::abs(on_side)};
 }
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

@@ -8,7 +8,8 @@
 #include <array>
 #include <vector>
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 
 // A scene's triangle mesh prepared for tracing (see prepare_mesh).
 struct Mesh {
@@ -144,4 +145,5 @@ inline SurfaceSample mesh_surface(const Mesh& mesh, const Ray& ray, std::uint32_
     return {point, facet, error, shading};
 }
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

@@ -3,7 +3,8 @@
 
 #include "trace/shapes/shape.h"
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 
 inline Real plane_t(const Ray& ray) {
     // A ray parallel to the plane (d.y = 0) gives ±inf or NaN, which candidate() rejects.
@@ -28,4 +29,5 @@ inline SurfaceSample plane_surface(Vec3 p) {
             gamma(3) * Vec3(std::abs(p.x), 0.0_r, std::abs(p.z))};
 }
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

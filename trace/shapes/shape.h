@@ -5,7 +5,8 @@
 #include "trace/math.h"
 #include "trace/ray.h"
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 
 struct ShapeHit {
     Real t = kInfinity;
@@ -34,4 +35,5 @@ inline ShapeHit candidate(Real t, Real t_max, std::uint32_t part) {
     return (t > 0 && t < t_max) ? ShapeHit{t, part} : ShapeHit{};
 }
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint

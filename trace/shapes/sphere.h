@@ -6,7 +6,8 @@
 #include <cmath>
 #include <utility>
 
-namespace glint::inline GLINT_PRECISION {
+namespace glint {
+inline namespace GLINT_PRECISION {
 
 // Solves |o + t·d|² = 1 without catastrophic cancellation (Ray Tracing Gems ch. 7, Haines et
 // al.): the discriminant b² − ac is computed as a·(1 − |o − (b/a)·d|²), the squared distance of
@@ -35,4 +36,5 @@ inline SurfaceSample sphere_surface(Vec3 p) {
     return {on_sphere, on_sphere, gamma(5) * glm::abs(on_sphere)};
 }
 
-} // namespace glint::inline GLINT_PRECISION
+} // namespace GLINT_PRECISION
+} // namespace glint
