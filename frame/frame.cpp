@@ -25,6 +25,7 @@ Frame render_frame(const World& world, const FrameSettings& settings,
                    std::atomic<int>* tiles_done) {
     Frame frame;
     const TileProgress progress{settings.threads, tiles_done};
+    PrimarySource source; // ray mode: every camera ray
     // Model only what the scene needs: an empty scene gets no GL context.
     if (settings.mode == Mode::hybrid && !world.objects().empty()) {
         // The GL pass runs before the tracing, not beside it: on 2 cores they would only compete.
@@ -37,14 +38,11 @@ Frame render_frame(const World& world, const FrameSettings& settings,
         });
         frame.items = timed(frame.times.raster, [&] { return items.draw(world); });
         frame.deviations = items.deviations();
-        frame.primary = timed(frame.times.primary, [&] {
-            return primary_hits_from_ids(world, frame.items->ids, settings.resolve,
-                                         frame.primary_stats, progress);
-        });
-    } else {
-        frame.primary =
-            timed(frame.times.primary, [&] { return primary_hits_by_ray(world, progress); });
+        source = {&frame.items->ids, settings.resolve};
     }
+    frame.primary = timed(frame.times.primary, [&] {
+        return primary_hits(world, source, frame.primary_stats, progress);
+    });
     frame.result =
         timed(frame.times.shading, [&] { return shade_image(world, frame.primary, progress); });
     return frame;

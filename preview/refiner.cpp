@@ -56,41 +56,37 @@ void RefineJob::work(const std::atomic<bool>& cancel) {
     }
 }
 
-// Per pixel what render_frame does (primary_hits_from_ids or a camera ray, then shade_image's
-// call of shade), plus what the other views need.
+// Each pixel through trace/pixel.h's path, as `glint render` traces it; the other views show
+// what that path computed, and only the difference view casts a ray of its own.
 void RefineJob::trace_tile(const TileRect& rect) {
     const World& world = *world_;
-    const PinholeCamera& camera = world.camera();
+    const PrimarySource source{ids_.get(), resolve_};
     const int max_depth = world.settings().max_depth;
     RayCounts counts;
     PrimaryStats stats;
     std::uint64_t differing = 0;
     for (int y = rect.y0; y < rect.y1; ++y) {
         for (int x = rect.x0; x < rect.x1; ++x) {
-            const Ray ray = camera.ray(x, y);
-            const Hit hit =
-                ids_ ? resolve_pixel(world, *ids_, resolve_, x, y, stats) : world.intersect(ray);
-            const Hit by_ray = compare_with_ray_ ? world.intersect(ray) : hit;
-            RayCounts pixel;
-            ++pixel.primary;
-            Real omitted = 0;
-            const Vec3 c = shade(world, ray, hit, 0, 1, pixel, omitted);
+            const PixelSample sample = trace_pixel(world, source, x, y, stats);
+            const Hit& hit = sample.hit;
             std::uint8_t* p = final_.pixel(x, y);
-            store_colour(c, p);
+            store_colour(sample.colour, p);
             // Reflection is perfect: a pixel's reflection rays form one chain, so their number
             // is its reflection depth.
-            const Rgb depth = reflection_colour(static_cast<int>(pixel.reflection), max_depth);
+            const Rgb depth =
+                reflection_colour(static_cast<int>(sample.rays.reflection), max_depth);
             std::copy(depth.begin(), depth.end(), reflections_.pixel(x, y));
-            const Rgb normal = hit.found()
-                                   ? normal_colour(glm::vec3(world.surface(ray, hit).shading))
-                                   : Rgb{0, 0, 0};
+            const Rgb normal =
+                hit.found() ? normal_colour(glm::vec3(sample.normal)) : Rgb{0, 0, 0};
             std::copy(normal.begin(), normal.end(), normals_.pixel(x, y));
+            const Hit by_ray =
+                compare_with_ray_ ? world.intersect(world.camera().ray(x, y)) : hit;
             const bool differs =
                 by_ray.found() != hit.found() || (hit.found() && by_ray.object != hit.object);
             differing += differs;
             const Rgb diff = difference_colour(p, differs);
             std::copy(diff.begin(), diff.end(), difference_.pixel(x, y));
-            counts += pixel;
+            counts += sample.rays;
         }
     }
     const std::lock_guard lock(totals_mutex_);

@@ -61,7 +61,7 @@ TEST_P(RefinerTest, AFinishedJobIsTheHeadlessImage) {
     const auto ids = ids_by_ray(*world);
     PrimaryStats stats;
     const RenderResult hybrid =
-        shade_image(*world, primary_hits_from_ids(*world, *ids, Resolve::exact, stats));
+        shade_image(*world, primary_hits(*world, {ids.get(), Resolve::exact}, stats));
     auto job = std::make_shared<RefineJob>(world, ids, Resolve::exact);
     run_to_completion(job, 2);
     EXPECT_EQ(job->traced(View::final).rgb, hybrid.image.rgb);

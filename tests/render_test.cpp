@@ -30,6 +30,39 @@ TEST(Render, OneAndTwoThreadsGiveIdenticalBytes) {
     EXPECT_EQ(one.rays.reflection, two.rays.reflection);
 }
 
+// trace/pixel.h's path is the frame's: a pixel traced alone has the colour, rays and cut-off
+// weight that shade_image gives it, and its normal is the surface's own shading normal.
+TEST(Render, APixelTracedAloneIsThePixelOfTheFrame) {
+    const World world(default_scene(64, 48));
+    const std::vector<Hit> primary = primary_hits_by_ray(world);
+    const RenderResult frame = shade_image(world, primary);
+    RayCounts total;
+    int hits = 0;
+    for (int y = 0; y < 48; ++y) {
+        for (int x = 0; x < 64; ++x) {
+            PrimaryStats stats;
+            const PixelSample sample = trace_pixel(world, {}, x, y, stats);
+            const std::size_t i = static_cast<std::size_t>(y) * 64 + x;
+            std::uint8_t rgb[3];
+            store_colour(sample.colour, rgb);
+            ASSERT_TRUE(std::equal(rgb, rgb + 3, frame.image.pixel(x, y))) << x << ", " << y;
+            EXPECT_EQ(static_cast<float>(sample.omitted_weight), frame.omitted_weight[i]);
+            EXPECT_EQ(sample.hit.found(), primary[i].found());
+            total += sample.rays;
+            if (!sample.hit.found()) {
+                EXPECT_EQ(sample.normal, Vec3(0));
+                continue;
+            }
+            ++hits;
+            EXPECT_EQ(sample.normal, world.surface(world.camera().ray(x, y), sample.hit).shading);
+        }
+    }
+    EXPECT_GT(hits, 64 * 48 / 2);
+    EXPECT_EQ(total.primary, frame.rays.primary);
+    EXPECT_EQ(total.shadow, frame.rays.shadow);
+    EXPECT_EQ(total.reflection, frame.rays.reflection);
+}
+
 TEST(Render, ProgressCountsEveryTile) {
     const World world(default_scene(100, 70));
     std::atomic<int> done{0};

@@ -5,18 +5,6 @@
 namespace glint {
 inline namespace GLINT_PRECISION {
 
-std::vector<Hit> primary_hits_by_ray(const World& world, const TileProgress& progress) {
-    const PinholeCamera& camera = world.camera();
-    std::vector<Hit> hits(static_cast<std::size_t>(camera.width()) * camera.height());
-    for_each_tile(camera.width(), camera.height(), progress, [&](int x0, int y0, int x1, int y1) {
-        for (int y = y0; y < y1; ++y)
-            for (int x = x0; x < x1; ++x)
-                hits[static_cast<std::size_t>(y) * camera.width() + x] =
-                    world.intersect(camera.ray(x, y));
-    });
-    return hits;
-}
-
 // The exact-mode argument. The id image comes from surfaces that enclose each object's true
 // surface (conservative tessellation, or exact proxies), so along a pixel's ray every object's
 // true hit lies at or beyond its rasterized hit, and the depth test kept the nearest rasterized
@@ -80,8 +68,8 @@ Hit resolve_pixel(const World& world, const IdImage& ids, Resolve resolve, int x
     return hit;
 }
 
-std::vector<Hit> primary_hits_from_ids(const World& world, const IdImage& ids, Resolve resolve,
-                                       PrimaryStats& stats, const TileProgress& progress) {
+std::vector<Hit> primary_hits(const World& world, const PrimarySource& source,
+                              PrimaryStats& stats, const TileProgress& progress) {
     const PinholeCamera& camera = world.camera();
     const int width = camera.width();
     std::vector<Hit> hits(static_cast<std::size_t>(width) * camera.height());
@@ -91,7 +79,7 @@ std::vector<Hit> primary_hits_from_ids(const World& world, const IdImage& ids, R
         for (int y = y0; y < y1; ++y)
             for (int x = x0; x < x1; ++x)
                 hits[static_cast<std::size_t>(y) * width + x] =
-                    resolve_pixel(world, ids, resolve, x, y, local);
+                    primary_hit(world, source, x, y, local);
         const std::lock_guard lock(stats_mutex);
         stats += local;
     });

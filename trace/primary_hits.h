@@ -36,16 +36,34 @@ struct PrimaryStats {
     }
 };
 
-// Casts the camera ray of every pixel.
-std::vector<Hit> primary_hits_by_ray(const World& world, const TileProgress& progress = {});
+// Where primary hits come from: each pixel's camera ray (no `ids`, ray mode), or the id image
+// (same size as the camera's image) resolved as `resolve` says (hybrid mode).
+struct PrimarySource {
+    const IdImage* ids = nullptr;
+    Resolve resolve = Resolve::exact;
+};
 
-// Resolves pixel (x, y) from `ids` (same size as the camera's image), counting into `stats`.
+// Resolves pixel (x, y) from `ids`, counting into `stats`.
 Hit resolve_pixel(const World& world, const IdImage& ids, Resolve resolve, int x, int y,
                   PrimaryStats& stats);
 
-// Resolves every pixel from `ids` (same size as the camera's image).
-std::vector<Hit> primary_hits_from_ids(const World& world, const IdImage& ids, Resolve resolve,
-                                       PrimaryStats& stats, const TileProgress& progress = {});
+// Pixel (x, y)'s primary hit from `source` (stats are counted only when resolving ids).
+inline Hit primary_hit(const World& world, const PrimarySource& source, int x, int y,
+                       PrimaryStats& stats) {
+    return source.ids ? resolve_pixel(world, *source.ids, source.resolve, x, y, stats)
+                      : world.intersect(world.camera().ray(x, y));
+}
+
+// Every pixel's primary hit from `source`, row-major, top row first.
+std::vector<Hit> primary_hits(const World& world, const PrimarySource& source,
+                              PrimaryStats& stats, const TileProgress& progress = {});
+
+// Ray mode: every pixel's camera ray.
+inline std::vector<Hit> primary_hits_by_ray(const World& world,
+                                            const TileProgress& progress = {}) {
+    PrimaryStats unused;
+    return primary_hits(world, {}, unused, progress);
+}
 
 } // namespace GLINT_PRECISION
 } // namespace glint

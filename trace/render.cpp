@@ -19,12 +19,11 @@ RenderResult shade_image(const World& world, const std::vector<Hit>& primary,
         RayCounts counts;
         for (int y = y0; y < y1; ++y) {
             for (int x = x0; x < x1; ++x) {
-                ++counts.primary;
                 const std::size_t i = static_cast<std::size_t>(y) * width + x;
-                Real omitted = 0;
-                const Vec3 c = shade(world, camera.ray(x, y), primary[i], 0, 1, counts, omitted);
-                result.omitted_weight[i] = static_cast<float>(omitted);
-                store_colour(c, result.image.pixel(x, y));
+                const PixelSample sample = shade_pixel(world, x, y, primary[i]);
+                result.omitted_weight[i] = static_cast<float>(sample.omitted_weight);
+                store_colour(sample.colour, result.image.pixel(x, y));
+                counts += sample.rays;
             }
         }
         const std::lock_guard lock(counts_mutex); // integer sums: order does not matter

@@ -4,8 +4,7 @@
 
 #include "trace/image_metrics.h"
 #include "trace/precision.h"
-#include "trace/primary_hits.h"
-#include "trace/shading.h"
+#include "trace/pixel.h"
 
 namespace glint {
 inline namespace GLINT_PRECISION {
@@ -15,7 +14,8 @@ inline void store_colour(Vec3 c, std::uint8_t* pixel) {
     for (int i = 0; i < 3; ++i) pixel[i] = to_byte(static_cast<float>(c[i]));
 }
 
-// Shades the pixels whose primary hits are given (row-major, top row first).
+// Shades the pixels whose primary hits are given (row-major, top row first), each through
+// trace/pixel.h's path.
 RenderResult shade_image(const World& world, const std::vector<Hit>& primary,
                          const TileProgress& progress = {});
 

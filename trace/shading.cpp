@@ -8,7 +8,11 @@ inline namespace GLINT_PRECISION {
 Vec3 shade(const World& world, const Ray& ray, const Hit& hit, int depth, Real weight,
            RayCounts& counts, Real& omitted_weight) {
     if (!hit.found()) return world.background();
-    const SurfacePoint surface = world.surface(ray, hit);
+    return shade(world, ray, hit, world.surface(ray, hit), depth, weight, counts, omitted_weight);
+}
+
+Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoint& surface,
+           int depth, Real weight, RayCounts& counts, Real& omitted_weight) {
     const Phong& m = world.material(hit.object);
     const Vec3 n = surface.shading;
     const Vec3 v = -glm::normalize(ray.direction);

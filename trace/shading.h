@@ -15,6 +15,9 @@ inline namespace GLINT_PRECISION {
 // would have carried (its contribution is at most that weight times the radiance it would see).
 Vec3 shade(const World& world, const Ray& ray, const Hit& hit, int depth, Real weight,
            RayCounts& counts, Real& omitted_weight);
+// The same at a found hit whose surface point (World::surface) the caller has already rebuilt.
+Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoint& surface,
+           int depth, Real weight, RayCounts& counts, Real& omitted_weight);
 
 } // namespace GLINT_PRECISION
 } // namespace glint

@@ -1,0 +1,22 @@
+#include "trace/pixel.h"
+
+namespace glint {
+inline namespace GLINT_PRECISION {
+
+PixelSample shade_pixel(const World& world, int x, int y, const Hit& primary) {
+    PixelSample sample;
+    sample.hit = primary;
+    ++sample.rays.primary;
+    const Ray ray = world.camera().ray(x, y);
+    if (!primary.found()) {
+        sample.colour = world.background();
+        return sample;
+    }
+    const SurfacePoint surface = world.surface(ray, primary);
+    sample.normal = surface.shading;
+    sample.colour = shade(world, ray, primary, surface, 0, 1, sample.rays, sample.omitted_weight);
+    return sample;
+}
+
+} // namespace GLINT_PRECISION
+} // namespace glint

@@ -1,0 +1,31 @@
+// One pixel's path, the only one: its primary hit (by camera ray or from the item buffer's ids,
+// trace/primary_hits.h), then Whitted shading (trace/shading.h). The headless render, the hybrid
+// resolve and the preview's refiner all trace pixels through here; what a view or a report
+// shows beside the colour comes from what this path computed, not from a second intersection.
+#pragma once
+
+#include "trace/primary_hits.h"
+#include "trace/shading.h"
+
+namespace glint {
+inline namespace GLINT_PRECISION {
+
+struct PixelSample {
+    Vec3 colour{0};          // unclamped
+    Hit hit;                 // the primary hit (maybe none)
+    Vec3 normal{0};          // unit shading normal at the primary hit; zero where there is none
+    RayCounts rays;          // the primary ray and every ray shading cast
+    Real omitted_weight = 0; // trace/shading.h: the weight of the reflection not cast, or 0
+};
+
+// Shades pixel (x, y) of the world's camera from its primary hit.
+PixelSample shade_pixel(const World& world, int x, int y, const Hit& primary);
+
+// The whole path of pixel (x, y): its primary hit from `source`, then shading.
+inline PixelSample trace_pixel(const World& world, const PrimarySource& source, int x, int y,
+                               PrimaryStats& stats) {
+    return shade_pixel(world, x, y, primary_hit(world, source, x, y, stats));
+}
+
+} // namespace GLINT_PRECISION
+} // namespace glint
