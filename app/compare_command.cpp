@@ -59,7 +59,7 @@ int run_compare(const CompareArgs& args) {
     std::printf("glint compare: %s, %dx%d, %zu objects, %s, %s\n", args.scene.scene_path().c_str(),
                 scene.camera.width, scene.camera.height, scene.objects.size(),
                 args.frame.describe().c_str(),
-                std::string(accel_name(world.accelerator().kind())).c_str());
+                std::string(name_of(world.accelerator().kind())).c_str());
     std::printf("GL: %s\n\n", hybrid.gl_renderer.c_str());
     std::printf("%-36s %9s %9s\n", "phase (seconds)", "ray", "hybrid");
     std::printf("%-36s %9s %s\n", "GL context creation", "-", seconds(h.context).c_str());
@@ -115,7 +115,7 @@ int run_compare(const CompareArgs& args) {
             {"height", scene.camera.height},
             {"objects", scene.objects.size()},
             {"settings", args.frame.describe()},
-            {"accel", accel_name(world.accelerator().kind())},
+            {"accel", name_of(world.accelerator().kind())},
             {"gl_renderer", hybrid.gl_renderer},
             {"ray", {{"seconds", r.total()}, {"phases", phases(r)}}},
             {"hybrid", {{"seconds", h.total()}, {"phases", phases(h)}}},

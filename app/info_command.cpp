@@ -22,11 +22,11 @@ Command add_info_command(CLI::App& app) {
                     try {
                         const auto context = make_context(backend);
                         std::printf("OpenGL (%s): %s, %s\n",
-                                    std::string(backend_name(backend)).c_str(),
+                                    std::string(name_of(backend)).c_str(),
                                     context->renderer().c_str(), context->version().c_str());
                     } catch (const GlError& e) {
                         std::printf("OpenGL (%s): unavailable: %s\n",
-                                    std::string(backend_name(backend)).c_str(), e.what());
+                                    std::string(name_of(backend)).c_str(), e.what());
                     }
                 }
                 return 0;

@@ -50,22 +50,22 @@ Scene SceneOptions::load() const {
 }
 
 std::optional<AccelKind> SceneOptions::accel_kind() const {
-    return accel_from_name(accel);
+    return from_name<AccelKind>(accel);
 }
 
 void FrameOptions::add_to(CLI::App& cmd, bool with_mode, bool with_gl) {
     if (with_mode)
         cmd.add_option("--mode", mode, "Primary visibility: hybrid (item buffer) or ray")
             ->capture_default_str()
-            ->check(CLI::IsMember({"hybrid", "ray"}));
+            ->check(CLI::IsMember(all_names<Mode>()));
     if (with_gl)
         cmd.add_option("--gl", gl, "Headless GL for the item buffer: osmesa or egl")
             ->capture_default_str()
-            ->check(CLI::IsMember({"osmesa", "egl"}));
+            ->check(CLI::IsMember(all_names<GlBackend>()));
     cmd.add_option("--raster", raster,
                    "Item buffer: mesh (tessellated) or proxy (exact, per-fragment)")
         ->capture_default_str()
-        ->check(CLI::IsMember({"mesh", "proxy"}));
+        ->check(CLI::IsMember(all_names<RasterMode>()));
     cmd.add_option("--tess", tessellation, "Segments around curved outlines in mesh mode")
         ->capture_default_str()
         ->check(CLI::Range(kMinTessellation, kMaxTessellation));
@@ -73,24 +73,23 @@ void FrameOptions::add_to(CLI::App& cmd, bool with_mode, bool with_gl) {
                    "exact: check the interval tessellation leaves uncertain; trust: take the item "
                    "buffer's word")
         ->capture_default_str()
-        ->check(CLI::IsMember({"exact", "trust"}));
+        ->check(CLI::IsMember(all_names<Resolve>()));
     cmd.add_option("--threads", threads, "Worker threads; default all cores")
         ->check(CLI::Range(1, 1024));
 }
 
 FrameSettings FrameOptions::settings() const {
-    return {mode == "ray" ? Mode::ray : Mode::hybrid,
-            gl == "egl" ? GlBackend::egl : GlBackend::osmesa,
-            raster == "proxy" ? RasterMode::proxy : RasterMode::mesh,
-            tessellation,
-            resolve == "trust" ? Resolve::trust : Resolve::exact,
-            threads};
+    // The options' checks admit only these names.
+    return {*from_name<Mode>(mode),    *from_name<GlBackend>(gl), *from_name<RasterMode>(raster),
+            tessellation,              *from_name<Resolve>(resolve), threads};
 }
 
 std::string FrameOptions::describe() const {
-    if (mode == "ray") return "ray";
-    return "hybrid (" + gl + ", " + raster +
-           (raster == "mesh" ? " tess " + std::to_string(tessellation) : "") + ", " + resolve + ")";
+    const FrameSettings s = settings();
+    if (s.mode == Mode::ray) return std::string(name_of(s.mode));
+    return std::string(name_of(s.mode)) + " (" + gl + ", " + raster +
+           (s.raster == RasterMode::mesh ? " tess " + std::to_string(tessellation) : "") + ", " +
+           resolve + ")";
 }
 
 std::pair<int, int> parse_size(const std::string& text, const std::string& flag) {

@@ -34,8 +34,7 @@ PreviewOptions prepare(const PreviewArgs& args) {
     options.scene_name = args.scene.scene_path().string();
     options.accel = args.scene.accel_kind();
     options.frame = args.frame.settings();
-    for (int v = 0; v < kViewCount; ++v)
-        if (view_key(static_cast<View>(v)) == args.view) options.view = static_cast<View>(v);
+    options.view = *from_name<View>(args.view); // checked by --view
     // The preview holds the item buffer, its flat image and four traced views of each frame.
     check_frame_memory(options.scene.camera, Mode::hybrid, 2);
     return options;
@@ -79,7 +78,7 @@ Command add_preview_command(CLI::App& app) {
                     "The view shown first: final, items (item buffer), depth, normals, "
                     "difference (ray vs hybrid) or reflections (reflection depth)")
         ->capture_default_str()
-        ->check(CLI::IsMember({"final", "items", "depth", "normals", "difference", "reflections"}));
+        ->check(CLI::IsMember(all_names<View>()));
     return {cmd, [args] { prepare(*args); },
             [args] { return guarded([&] { return run(*args); }); }};
 }

@@ -108,7 +108,7 @@ int run_render(const RenderArgs& args) {
         const TraversalCounters counts = world.traversal_counts();
         const double queries = static_cast<double>(rays.primary + rays.shadow + rays.reflection);
         stats["accel"] = {
-            {"kind", accel_name(world.accelerator().kind())},
+            {"kind", name_of(world.accelerator().kind())},
             {"build_seconds", world.build_seconds()},
             {"memory_bytes", world.accelerator().memory_bytes()},
             {"nodes", world.accelerator().node_count()},
@@ -134,7 +134,7 @@ int run_render(const RenderArgs& args) {
     std::printf("glint: wrote %s (%dx%d, %s, %s, %d threads) in %.3f s (render %.3f s)\n",
                 output.c_str(), scene.camera.width, scene.camera.height,
                 args.frame.describe().c_str(),
-                std::string(accel_name(world.accelerator().kind())).c_str(), threads, total_seconds,
+                std::string(name_of(world.accelerator().kind())).c_str(), threads, total_seconds,
                 t.total());
     std::printf("rays: %llu primary, %llu shadow, %llu reflection\n",
                 static_cast<unsigned long long>(rays.primary),

@@ -53,12 +53,12 @@ struct Setting {
     // A short name for tables and plots, e.g. "hybrid mesh tess 8 trust".
     std::string label(const Scene& scene) const {
         const FrameSettings& f = frame;
-        std::string s = f.mode == Mode::ray ? "ray" : "hybrid";
-        if (precision == Precision::f64) s += " double";
+        std::string s(name_of(f.mode));
+        if (precision == Precision::f64) s.append(" ").append(name_of(precision));
         if (f.mode == Mode::hybrid) {
-            s += f.raster == RasterMode::mesh ? " mesh tess " + std::to_string(f.tessellation)
-                                              : " proxy";
-            if (f.resolve == Resolve::trust) s += " trust";
+            s.append(" ").append(name_of(f.raster));
+            if (f.raster == RasterMode::mesh) s += " tess " + std::to_string(f.tessellation);
+            if (f.resolve == Resolve::trust) s.append(" ").append(name_of(f.resolve));
         }
         if (max_depth != scene.render.max_depth) s += " depth " + std::to_string(max_depth);
         if (min_reflectivity != scene.render.min_reflectivity) {
@@ -66,7 +66,7 @@ struct Setting {
             std::snprintf(text, sizeof text, " cut-off %g", static_cast<double>(min_reflectivity));
             s += text;
         }
-        if (accel) s += " " + std::string(accel_name(*accel));
+        if (accel) s.append(" ").append(name_of(*accel));
         if (divisor > 1) s += " 1/" + std::to_string(divisor) + " size";
         return s;
     }
@@ -184,7 +184,7 @@ Run render_once(const Scene& scene, const Setting& s, const TradeoffArgs& args) 
         const World world(copy, s.accel);
         run.prepare = seconds_since(start);
         FrameSettings settings = s.frame;
-        settings.gl = args.gl == "egl" ? GlBackend::egl : GlBackend::osmesa;
+        settings.gl = *from_name<GlBackend>(args.gl); // checked by --gl
         settings.threads = args.threads;
         Frame frame = render_frame(world, settings);
         run.times = frame.times;
@@ -324,13 +324,13 @@ void write_csv(const std::vector<SceneResult>& results, const fs::path& path) {
             const bool hybrid = f.mode == Mode::hybrid;
             csv << sr.name << ',' << sr.scene.camera.width << ',' << sr.scene.camera.height << ','
                 << r.knobs << ",\"" << r.label << "\","
-                << (s.precision == Precision::f64 ? "double" : "float") << ','
-                << (hybrid ? "hybrid" : "ray") << ',' << (hybrid ? raster_mode_name(f.raster) : "")
+                << name_of(s.precision) << ',' << name_of(f.mode) << ','
+                << (hybrid ? name_of(f.raster) : "")
                 << ','
                 << (hybrid && f.raster == RasterMode::mesh ? std::to_string(f.tessellation) : "")
-                << ',' << (hybrid ? (f.resolve == Resolve::exact ? "exact" : "trust") : "") << ','
+                << ',' << (hybrid ? name_of(f.resolve) : "") << ','
                 << s.max_depth << ',' << s.min_reflectivity << ','
-                << (s.accel ? accel_name(*s.accel) : "auto") << ',' << s.divisor << ','
+                << (s.accel ? name_of(*s.accel) : "auto") << ',' << s.divisor << ','
                 << r.frame_seconds() << ',' << r.total_seconds() << ',' << r.prepare << ','
                 << r.times.context << ',' << r.times.compile << ',' << r.times.upload << ','
                 << r.times.raster << ',' << r.times.primary << ',' << r.times.shading << ','
@@ -523,7 +523,7 @@ Command add_tradeoff_command(CLI::App& app) {
         ->check(CLI::Range(1, 100));
     cmd->add_option("--gl", args->gl, "Headless GL for the item buffer: osmesa or egl")
         ->capture_default_str()
-        ->check(CLI::IsMember({"osmesa", "egl"}));
+        ->check(CLI::IsMember(all_names<GlBackend>()));
     cmd->add_option("--threads", args->threads, "Worker threads; default all cores")
         ->check(CLI::Range(1, 1024));
     return {cmd, [args] { prepare(*args); },

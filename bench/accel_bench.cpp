@@ -56,7 +56,7 @@ void Build(benchmark::State& state) {
     std::vector<Bounds> bounds;
     for (const Object& o : w.objects()) bounds.push_back(o.bounds);
     for (auto _ : state) benchmark::DoNotOptimize(Accelerator(kind_of(state), bounds));
-    state.SetLabel(std::string(accel_name(kind_of(state))));
+    state.SetLabel(std::string(name_of(kind_of(state))));
 }
 
 // One thread, camera rays through every pixel.
@@ -71,7 +71,7 @@ void PrimaryRays(benchmark::State& state) {
         rays += camera.width() * camera.height();
     }
     state.SetItemsProcessed(rays);
-    state.SetLabel(std::string(accel_name(kind_of(state))));
+    state.SetLabel(std::string(name_of(kind_of(state))));
 }
 
 // Rays spawned from the primary hits: to the light (any-hit) or mirrored (closest hit).
@@ -103,7 +103,7 @@ template <bool kShadow> void SecondaryRays(benchmark::State& state) {
         count += static_cast<std::int64_t>(rays.size());
     }
     state.SetItemsProcessed(count);
-    state.SetLabel(std::string(accel_name(kind_of(state))));
+    state.SetLabel(std::string(name_of(kind_of(state))));
 }
 
 void ShadowRays(benchmark::State& state) {

@@ -15,6 +15,10 @@ namespace glint {
 
 enum class Mode { hybrid, ray };
 
+template <> struct EnumNames<Mode> {
+    static constexpr std::array<std::string_view, 2> names = {"hybrid", "ray"};
+};
+
 struct FrameSettings {
     Mode mode = Mode::hybrid;
     GlBackend gl = GlBackend::osmesa;

@@ -39,14 +39,14 @@ int check_loader(const std::uint8_t* data, std::size_t size, const std::string& 
     tbb::task_arena one_thread(1);
     one_thread.execute([&] {
         Image first;
-        for (const std::string_view accel : kAccelNames) {
-            const World world(scene, accel_from_name(accel));
+        for (const std::string_view accel : EnumNames<AccelKind>::names) {
+            const World world(scene, from_name<AccelKind>(accel));
             const Image image = render(world).image;
-            if (accel == kAccelNames[0]) {
+            if (accel == EnumNames<AccelKind>::names[0]) {
                 first = image;
             } else if (image.rgb != first.rgb) {
                 std::fprintf(stderr, "%s renders a different image from %s\n",
-                             std::string(accel).c_str(), std::string(kAccelNames[0]).c_str());
+                             std::string(accel).c_str(), std::string(EnumNames<AccelKind>::names[0]).c_str());
                 std::abort();
             }
         }

@@ -153,12 +153,12 @@ Preview::~Preview() {
 }
 
 std::string Preview::describe_settings() const {
-    std::string text = frame_.mode == Mode::ray ? "ray" : "hybrid ";
+    std::string text(name_of(frame_.mode));
     if (frame_.mode == Mode::hybrid) {
-        text += raster_mode_name(frame_.raster);
+        text.append(" ").append(name_of(frame_.raster));
         if (frame_.raster == RasterMode::mesh)
             text += " tess " + std::to_string(frame_.tessellation);
-        text += frame_.resolve == Resolve::exact ? " exact" : " trust";
+        text.append(" ").append(name_of(frame_.resolve));
     }
     return text + ", depth " + std::to_string(scene_.render.max_depth);
 }
@@ -358,7 +358,7 @@ void Preview::save_screenshot(const std::filesystem::path& path) {
                     &image.rgb[static_cast<std::size_t>(y) * row]);
     write_png(path, image);
     std::printf("glint: saved %s (%dx%d, %s)\n", path.c_str(), width, height,
-                std::string(view_name(view_)).c_str());
+                std::string(view_label(view_)).c_str());
 }
 
 // The title is the overlay: view, settings, progress and timings. Set only when its text changes:
@@ -368,7 +368,7 @@ void Preview::update_title(bool force) {
     title_time_ = Clock::now();
     std::string title = "glint preview — " +
                         std::filesystem::path(options_.scene_name).filename().string() + " — " +
-                        std::string(view_name(view_)) + " — " + describe_settings() + " — ";
+                        std::string(view_label(view_)) + " — " + describe_settings() + " — ";
     if (job_) {
         char progress[160];
         const RayCounts rays = job_->rays();

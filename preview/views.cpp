@@ -6,7 +6,7 @@
 
 namespace glint {
 
-std::string_view view_name(View view) {
+std::string_view view_label(View view) {
     switch (view) {
     case View::final:
         return "final image";
@@ -22,12 +22,6 @@ std::string_view view_name(View view) {
         return "reflection depth";
     }
     return "?";
-}
-
-std::string_view view_key(View view) {
-    constexpr std::string_view keys[kViewCount] = {"final",   "items",      "depth",
-                                                   "normals", "difference", "reflections"};
-    return keys[static_cast<int>(view)];
 }
 
 Rgb normal_colour(glm::vec3 normal) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "trace/image.h"
+#include "trace/names.h"
 #include "trace/primary_hits.h"
 
 #include <array>
@@ -15,8 +16,13 @@ namespace glint {
 enum class View { final, items, depth, normals, difference, reflections };
 inline constexpr int kViewCount = 6;
 
-std::string_view view_name(View view); // for people: "item buffer"
-std::string_view view_key(View view);  // for --view: "items"
+// For --view: "items".
+template <> struct EnumNames<View> {
+    static constexpr std::array<std::string_view, kViewCount> names = {
+        "final", "items", "depth", "normals", "difference", "reflections"};
+};
+
+std::string_view view_label(View view); // for people, in the title: "item buffer"
 // Whether the refiner traces this view (otherwise it comes whole from the item buffer).
 inline bool is_traced(View view) {
     return view != View::items && view != View::depth;

@@ -7,10 +7,6 @@ namespace glint {
 std::unique_ptr<GlContext> make_osmesa_context();
 std::unique_ptr<GlContext> make_egl_context();
 
-std::string_view backend_name(GlBackend backend) {
-    return backend == GlBackend::osmesa ? "osmesa" : "egl";
-}
-
 void GlContext::load_functions(void* (*get_proc)(const char*)) {
     // One glad table serves whichever context is current: reload whenever one is made current.
     const int version = gladLoadGL(reinterpret_cast<GLADloadfunc>(get_proc));

@@ -2,6 +2,8 @@
 // that the item-buffer code does not care whether OSMesa, EGL or (later) GLFW made it.
 #pragma once
 
+#include "trace/names.h"
+
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -11,7 +13,9 @@ namespace glint {
 
 enum class GlBackend { osmesa, egl };
 
-std::string_view backend_name(GlBackend backend);
+template <> struct EnumNames<GlBackend> {
+    static constexpr std::array<std::string_view, 2> names = {"osmesa", "egl"};
+};
 
 // No usable GL context: the message says what failed.
 class GlError : public std::runtime_error {

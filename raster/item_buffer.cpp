@@ -14,10 +14,6 @@
 
 namespace glint {
 
-std::string_view raster_mode_name(RasterMode mode) {
-    return mode == RasterMode::mesh ? "mesh" : "proxy";
-}
-
 namespace {
 
 GLuint compile(GLenum kind, const char* source) {

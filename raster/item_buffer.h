@@ -4,6 +4,7 @@
 #pragma once
 
 #include "trace/image.h"
+#include "trace/names.h"
 #include "trace/primary_hits.h"
 
 #include <memory>
@@ -16,7 +17,9 @@ namespace glint {
 // whose fragments intersect the true primitive (exact ids, no tessellation error).
 enum class RasterMode { mesh, proxy };
 
-std::string_view raster_mode_name(RasterMode mode);
+template <> struct EnumNames<RasterMode> {
+    static constexpr std::array<std::string_view, 2> names = {"mesh", "proxy"};
+};
 
 struct ItemBufferResult {
     IdImage ids;

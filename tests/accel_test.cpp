@@ -95,13 +95,13 @@ TEST_P(AccelTest, AgreesExactlyWithTheListOnAMillionRandomRays) {
             const Hit got = other.intersect(ray);
             hits += expected.found();
             ASSERT_EQ(got.object, expected.object)
-                << accel_name(kind) << " scene " << seed << " ray " << k;
-            ASSERT_EQ(got.t, expected.t) << accel_name(kind) << " scene " << seed << " ray " << k;
-            ASSERT_EQ(got.primitive, expected.primitive) << accel_name(kind) << " scene " << seed;
+                << name_of(kind) << " scene " << seed << " ray " << k;
+            ASSERT_EQ(got.t, expected.t) << name_of(kind) << " scene " << seed << " ray " << k;
+            ASSERT_EQ(got.primitive, expected.primitive) << name_of(kind) << " scene " << seed;
             // Any-hit, up to half and twice the closest distance (or a random one on a miss).
             const float t_max = expected.found() ? expected.t * (k % 2 ? 0.5f : 2.0f) : 20.0f;
             ASSERT_EQ(other.occluded(ray, t_max), list.occluded(ray, t_max))
-                << accel_name(kind) << " scene " << seed;
+                << name_of(kind) << " scene " << seed;
         }
     }
     EXPECT_EQ(rays, 1'000'000u);
@@ -280,7 +280,7 @@ TEST_P(AccelTest, HandlesEmptySingleAndDegenerateSets) {
 INSTANTIATE_TEST_SUITE_P(EveryStructure, AccelTest,
                          ::testing::Values(AccelKind::bvh, AccelKind::spheres, AccelKind::grid,
                                            AccelKind::kd),
-                         [](const auto& info) { return std::string(accel_name(info.param)); });
+                         [](const auto& info) { return std::string(name_of(info.param)); });
 
 int depth_below(const Bvh& bvh, std::uint32_t node) {
     const BvhNode& n = bvh.nodes()[node];

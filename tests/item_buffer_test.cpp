@@ -17,7 +17,7 @@ namespace {
 class GlTest : public ::testing::TestWithParam<GlBackend> {};
 
 std::string backend_test_name(const ::testing::TestParamInfo<GlBackend>& info) {
-    return std::string(backend_name(info.param));
+    return std::string(name_of(info.param));
 }
 
 // Large flat triangles at different depths and slants: the item buffer's ids must equal the
@@ -129,8 +129,8 @@ TEST_P(GlTest, ExactResolveReproducesRayModeOnACrowdedScene) {
         const Frame ray = render_frame(world, settings);
         settings.mode = Mode::hybrid;
         const Frame hybrid = render_frame(world, settings);
-        EXPECT_EQ(id_agreement(ray.primary, hybrid.primary), 1.0) << raster_mode_name(raster);
-        EXPECT_EQ(ray.result.image.rgb, hybrid.result.image.rgb) << raster_mode_name(raster);
+        EXPECT_EQ(id_agreement(ray.primary, hybrid.primary), 1.0) << name_of(raster);
+        EXPECT_EQ(ray.result.image.rgb, hybrid.result.image.rgb) << name_of(raster);
         EXPECT_GT(hybrid.primary_stats.edges, 0u);
     }
 }
@@ -183,7 +183,7 @@ TEST(GlStability, ReverseZSeparatesWallsAMillionAwayWithANearObjectInView) {
         settings.raster = raster;
         settings.resolve = Resolve::exact;
         EXPECT_EQ(id_agreement(ray.primary, render_frame(world, settings).primary), 1.0)
-            << raster_mode_name(raster);
+            << name_of(raster);
         settings.resolve = Resolve::trust;
         const Frame trust = render_frame(world, settings);
         int interior = 0, wrong = 0;
@@ -196,7 +196,7 @@ TEST(GlStability, ReverseZSeparatesWallsAMillionAwayWithANearObjectInView) {
                 ++interior;
                 wrong += trust.primary[y * w + x].object != id(x, y);
             }
-        EXPECT_EQ(wrong, 0) << raster_mode_name(raster) << ", of " << interior << " pixels";
+        EXPECT_EQ(wrong, 0) << name_of(raster) << ", of " << interior << " pixels";
     }
     std::size_t front = 0;
     for (const Hit& hit : ray.primary) front += hit.object == 2;
@@ -234,7 +234,7 @@ TEST_P(GlTest, FlatPreviewShowsEachObjectsDiffuseColourFromTheSamePass) {
                 }
             }
         }
-        EXPECT_EQ(off, 0u) << "of " << checked << " channels, in " << raster_mode_name(mode)
+        EXPECT_EQ(off, 0u) << "of " << checked << " channels, in " << name_of(mode)
                            << " mode";
     }
 }
@@ -248,7 +248,7 @@ struct SceneCase {
 };
 
 void PrintTo(const SceneCase& c, std::ostream* out) {
-    *out << c.scene << ", --raster " << raster_mode_name(c.raster) << ", --resolve "
+    *out << c.scene << ", --raster " << name_of(c.raster) << ", --resolve "
          << (c.resolve == Resolve::exact ? "exact" : "trust");
 }
 
@@ -307,7 +307,7 @@ std::string scene_case_name(const ::testing::TestParamInfo<SceneCase>& info) {
     std::string stem = path.substr(slash + 1, path.rfind('.') - slash - 1);
     for (char& ch : stem)
         if (ch == '-') ch = '_';
-    return stem + "_" + std::string(raster_mode_name(info.param.raster)) +
+    return stem + "_" + std::string(name_of(info.param.raster)) +
            (info.param.resolve == Resolve::exact ? "_exact" : "_trust");
 }
 

@@ -18,7 +18,7 @@ struct Case {
 };
 
 void PrintTo(const Case& c, std::ostream* out) {
-    *out << shape_name(c.shape);
+    *out << name_of(c.shape);
     if (c.top_radius > 0) *out << " (top_radius " << c.top_radius << ")";
 }
 
@@ -95,7 +95,7 @@ INSTANTIATE_TEST_SUITE_P(
                        ::testing::Values(3, 8, 32)),
     [](const auto& info) {
         const Case c = std::get<0>(info.param);
-        return std::string(shape_name(c.shape)) + (c.top_radius > 0 ? "_truncated" : "") + "_" +
+        return std::string(name_of(c.shape)) + (c.top_radius > 0 ? "_truncated" : "") + "_" +
                std::to_string(std::get<1>(info.param));
     });
 

@@ -22,7 +22,7 @@ using testing::shipped;
 // Runs the scripted preview and returns its screenshot.
 Image screenshot(const Scene& scene, View view, const std::string& name) {
     const fs::path path = fs::path(::testing::TempDir()) /
-                          ("glint-preview-" + name + "-" + std::string(view_key(view)) + ".png");
+                          ("glint-preview-" + name + "-" + std::string(name_of(view)) + ".png");
     fs::remove(path);
     PreviewOptions options;
     options.scene = scene;
@@ -34,7 +34,7 @@ Image screenshot(const Scene& scene, View view, const std::string& name) {
         EXPECT_EQ(run_preview(options), 0);
         return read_png(path);
     } catch (const std::exception& e) {
-        ADD_FAILURE() << name << ", " << view_name(view) << ": " << e.what();
+        ADD_FAILURE() << name << ", " << view_label(view) << ": " << e.what();
         return {};
     }
 }
@@ -72,7 +72,7 @@ TEST(Preview, EveryViewOfEveryShippedSceneShowsWhatItShould) {
         const IdImage& ids = headless.items->ids;
         EXPECT_EQ(items.rgb, false_colour(ids.ids, ids.width, ids.height).rgb);
         for (const View view : {View::depth, View::normals, View::difference, View::reflections}) {
-            SCOPED_TRACE(std::string(view_name(view)));
+            SCOPED_TRACE(std::string(view_label(view)));
             const Image shown = screenshot(scene, view, name);
             ASSERT_EQ(shown.width, 160);
             ASSERT_EQ(shown.height, 120);

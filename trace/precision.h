@@ -4,6 +4,7 @@
 
 #include "trace/accel/accel_kind.h"
 #include "trace/image.h"
+#include "trace/names.h"
 #include "trace/scene.h"
 #include "trace/tiles.h"
 
@@ -53,6 +54,10 @@ RayFrame render_ray_frame(const Scene& scene, std::optional<AccelKind> accel,
 }
 
 enum class Precision { f32, f64 };
+
+template <> struct EnumNames<Precision> {
+    static constexpr std::array<std::string_view, 2> names = {"float", "double"};
+};
 
 inline RayFrame render_ray_frame(Precision precision, const Scene& scene,
                                  std::optional<AccelKind> accel,

@@ -4,12 +4,22 @@
 // trace/ only sees the id image; how it was made is raster/'s business.
 #pragma once
 
+#include "trace/names.h"
 #include "trace/tiles.h"
 #include "trace/world.h"
 
 #include <vector>
 
 namespace glint {
+
+// How far to trust the id image: `exact` checks that nothing lies in front of the exact hit on
+// the named object within the interval the rasterized surface leaves uncertain; `trust` does not.
+enum class Resolve { exact, trust };
+
+template <> struct EnumNames<Resolve> {
+    static constexpr std::array<std::string_view, 2> names = {"exact", "trust"};
+};
+
 inline namespace GLINT_PRECISION {
 
 // Per pixel, row-major, top row first.
@@ -18,10 +28,6 @@ struct IdImage {
     std::vector<std::uint32_t> ids; // object index + 1; 0 where nothing was drawn
     std::vector<float> view_depth;  // distance along the camera's forward axis of what was drawn
 };
-
-// How far to trust the id image: `exact` checks that nothing lies in front of the exact hit on
-// the named object within the interval the rasterized surface leaves uncertain; `trust` does not.
-enum class Resolve { exact, trust };
 
 struct PrimaryStats {
     std::uint64_t exact_intersections = 0; // pixels resolved by intersecting one named object

@@ -3,6 +3,8 @@
 // Everything after loading may assume it valid; World (trace/world.h) prepares it for tracing.
 #pragma once
 
+#include "trace/names.h"
+
 #include <glm/glm.hpp>
 
 #include <array>
@@ -25,12 +27,10 @@ inline constexpr double kMaxCoordinate = 1e15;
 // The closed set of shapes (DESIGN.md §3). One switch in World dispatches on it.
 enum class ShapeKind : std::uint8_t { sphere, plane, box, disk, cylinder, cone, triangle, mesh };
 
-inline constexpr std::array<std::string_view, 8> kShapeNames = {
-    "sphere", "plane", "box", "disk", "cylinder", "cone", "triangle", "mesh"};
-
-inline std::string_view shape_name(ShapeKind kind) {
-    return kShapeNames[static_cast<int>(kind)];
-}
+template <> struct EnumNames<ShapeKind> {
+    static constexpr std::array<std::string_view, 8> names = {
+        "sphere", "plane", "box", "disk", "cylinder", "cone", "triangle", "mesh"};
+};
 
 struct Camera {
     DVec3 eye{0.0, 0.0, 5.0};

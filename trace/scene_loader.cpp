@@ -281,7 +281,7 @@ class Loader {
     }
 
     TriangleMesh mesh(const Node& node, ShapeKind shape) const {
-        if (!has(node, "vertices")) fail(node, std::string(shape_name(shape)) + " needs vertices");
+        if (!has(node, "vertices")) fail(node, std::string(name_of(shape)) + " needs vertices");
         const Node vertices = array(node.child("vertices"));
         TriangleMesh mesh;
         if (vertices.value.size() > kMaxMeshVertices)
@@ -330,13 +330,13 @@ class Loader {
     void object(const Node& node, Scene& scene) const {
         expect_object(node, {"shape", "material", "transform", "top_radius", "open", "vertices",
                              "indices", "file"});
-        if (!has(node, "shape")) fail(node, "an object needs a shape (" + join(kShapeNames) + ")");
+        if (!has(node, "shape")) fail(node, "an object needs a shape (" + join(EnumNames<ShapeKind>::names) + ")");
         const Node shape_node = node.child("shape");
         const std::string shape = string(shape_node);
-        const auto it = std::find(kShapeNames.begin(), kShapeNames.end(), shape);
-        if (it == kShapeNames.end()) fail(shape_node, "unknown shape '" + shape + "'");
+        const auto it = std::find(EnumNames<ShapeKind>::names.begin(), EnumNames<ShapeKind>::names.end(), shape);
+        if (it == EnumNames<ShapeKind>::names.end()) fail(shape_node, "unknown shape '" + shape + "'");
         SceneObject o;
-        o.shape = static_cast<ShapeKind>(it - kShapeNames.begin());
+        o.shape = static_cast<ShapeKind>(it - EnumNames<ShapeKind>::names.begin());
         const bool triangles = o.shape == ShapeKind::triangle || o.shape == ShapeKind::mesh;
         if (has(node, "top_radius") && o.shape != ShapeKind::cone)
             fail(node.child("top_radius"), "only cones have a top_radius");

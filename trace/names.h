@@ -1,0 +1,35 @@
+// The names of glint's closed sets (modes, structures, views, shapes, …), each spelled once: a
+// table beside the enum, in the enum's order, that the CLI, window titles, CSV and JSON all read.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace glint {
+
+// Specialised beside each named enum with `static constexpr std::array<std::string_view, N>
+// names`, one per enumerator, in order.
+template <class Enum> struct EnumNames;
+
+template <class Enum> constexpr std::string_view name_of(Enum value) {
+    return EnumNames<Enum>::names[static_cast<std::size_t>(value)];
+}
+
+template <class Enum> constexpr std::optional<Enum> from_name(std::string_view name) {
+    const auto& names = EnumNames<Enum>::names;
+    for (std::size_t i = 0; i < names.size(); ++i)
+        if (names[i] == name) return static_cast<Enum>(i);
+    return std::nullopt;
+}
+
+// Every name, in order: what a command-line option accepts.
+template <class Enum> std::vector<std::string> all_names() {
+    const auto& names = EnumNames<Enum>::names;
+    return {names.begin(), names.end()};
+}
+
+} // namespace glint
