@@ -193,10 +193,6 @@ int guarded(const std::function<int()>& body) {
     }
 }
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 Scene load_scene_with_notes(const std::filesystem::path& path) {
     Scene scene = load_scene(path);
     for (const std::string& note : scene.notes)

@@ -75,6 +75,4 @@ Scene load_scene_with_notes(const std::filesystem::path& path);
 // bad input 2, anything else 1.
 int guarded(const std::function<int()>& body);
 
-double seconds_since(std::chrono::steady_clock::time_point start);
-
 } // namespace glint

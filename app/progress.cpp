@@ -6,8 +6,7 @@
 namespace glint {
 
 Progress::Progress(std::string label, int total, const std::atomic<int>& done)
-    : label_(std::move(label)), total_(total), done_(done),
-      start_(std::chrono::steady_clock::now()) {
+    : label_(std::move(label)), total_(total), done_(done) {
     if (isatty(STDERR_FILENO)) thread_ = std::thread([this] { run(); });
 }
 
@@ -22,11 +21,10 @@ Progress::~Progress() {
 }
 
 void Progress::run() {
-    using namespace std::chrono;
     bool shown = false;
     std::unique_lock lock(mutex_);
-    while (!wake_.wait_for(lock, milliseconds(100), [this] { return stop_; })) {
-        const double elapsed = duration<double>(steady_clock::now() - start_).count();
+    while (!wake_.wait_for(lock, std::chrono::milliseconds(100), [this] { return stop_; })) {
+        const double elapsed = watch_.seconds();
         if (elapsed < 1.0) continue;
         const double fraction = static_cast<double>(done_.load(std::memory_order_relaxed)) / total_;
         if (fraction > 0)

@@ -2,8 +2,9 @@
 // finishes within a second.
 #pragma once
 
+#include "trace/stopwatch.h"
+
 #include <atomic>
-#include <chrono>
 #include <condition_variable>
 #include <mutex>
 #include <string>
@@ -25,7 +26,7 @@ class Progress {
     std::string label_;
     int total_;
     const std::atomic<int>& done_;
-    std::chrono::steady_clock::time_point start_;
+    Stopwatch watch_;
     std::mutex mutex_;
     std::condition_variable wake_;
     bool stop_ = false;

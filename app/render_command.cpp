@@ -4,6 +4,7 @@
 
 #include "trace/cutoff.h"
 #include "trace/image.h"
+#include "trace/stopwatch.h"
 
 #include <nlohmann/json.hpp>
 #include <tbb/task_arena.h>
@@ -45,16 +46,16 @@ RenderJob prepare(const RenderArgs& args) {
 }
 
 int run_render(const RenderArgs& args) {
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch total;
+    Stopwatch phase;
     const RenderJob job = prepare(args);
     const Scene& scene = job.scene;
     const fs::path& scene_path = job.scene_path;
     const fs::path& output = job.output;
-    const double load_seconds = seconds_since(start);
-    const auto prepare_start = std::chrono::steady_clock::now();
+    const double load_seconds = phase.lap();
     World world(scene, args.scene.accel_kind());
     if (!args.stats.empty()) world.count_traversals(true);
-    const double prepare_seconds = seconds_since(prepare_start);
+    const double prepare_seconds = phase.lap();
 
     std::atomic<int> tiles_done{0};
     const FrameSettings settings = args.frame.settings();
@@ -65,10 +66,10 @@ int run_render(const RenderArgs& args) {
             "rendering", 2 * tile_count(scene.camera.width, scene.camera.height), tiles_done);
         frame = render_frame(world, settings, &tiles_done);
     }
-    const auto write_start = std::chrono::steady_clock::now();
+    phase.restart();
     write_png(output, frame.result.image);
-    const double write_seconds = seconds_since(write_start);
-    const double total_seconds = seconds_since(start);
+    const double write_seconds = phase.seconds();
+    const double total_seconds = total.seconds();
     const int threads =
         args.frame.threads > 0 ? args.frame.threads : tbb::this_task_arena::max_concurrency();
     const RayCounts& rays = frame.result.rays;

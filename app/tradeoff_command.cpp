@@ -8,11 +8,11 @@
 #include "trace/cutoff.h"
 #include "trace/image_metrics.h"
 #include "trace/scene_loader.h"
+#include "trace/stopwatch.h"
 
 #include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -180,9 +180,9 @@ Run render_once(const Scene& scene, const Setting& s, const TradeoffArgs& args) 
         run.rays = frame.result.rays;
         run.image = std::move(frame.result.image);
     } else {
-        const auto start = std::chrono::steady_clock::now();
+        const Stopwatch watch;
         const World world(copy, s.accel);
-        run.prepare = seconds_since(start);
+        run.prepare = watch.seconds();
         FrameSettings settings = s.frame;
         settings.gl = *from_name<GlBackend>(args.gl); // checked by --gl
         settings.threads = args.threads;
@@ -446,7 +446,7 @@ std::vector<SceneResult> prepare(const TradeoffArgs& args) {
 }
 
 int run_tradeoff(const TradeoffArgs& args) {
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch watch;
     std::vector<SceneResult> results = prepare(args);
     if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
         throw std::runtime_error("glint tradeoff plots with gnuplot, which is not installed "
@@ -461,10 +461,10 @@ int run_tradeoff(const TradeoffArgs& args) {
         const Scene& scene = sr.scene;
         Scene deep = scene;
         deep.render = {kMaxDepth, 0.0f};
-        const auto reference_start = std::chrono::steady_clock::now();
+        const Stopwatch reference_watch;
         const RayFrame reference =
             render_ray_frame(Precision::f64, deep, std::nullopt, {args.threads, nullptr});
-        sr.reference_seconds = seconds_since(reference_start);
+        sr.reference_seconds = reference_watch.seconds();
         sr.reference_bound = cutoff_bound(deep, reference.result);
         const Image untruncated_float =
             render_ray_frame(Precision::f32, deep, std::nullopt, {args.threads, nullptr})
@@ -500,9 +500,9 @@ int run_tradeoff(const TradeoffArgs& args) {
     }
     write_csv(results, out / "tradeoff.csv");
     write_file_atomically(summary,
-                          markdown(results, args, plots, gl_renderer, seconds_since(start)));
+                          markdown(results, args, plots, gl_renderer, watch.seconds()));
     std::printf("wrote %s, %s and a plot per scene (SVG, PNG) in %s, in %.0f s\n",
-                (out / "tradeoff.csv").c_str(), summary.c_str(), out.c_str(), seconds_since(start));
+                (out / "tradeoff.csv").c_str(), summary.c_str(), out.c_str(), watch.seconds());
     return 0;
 }
 

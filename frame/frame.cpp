@@ -1,25 +1,8 @@
 #include "frame/frame.h"
 
-#include <chrono>
+#include "trace/stopwatch.h"
 
 namespace glint {
-namespace {
-
-// Runs `work` and adds its wall time to `seconds`.
-template <class Work> auto timed(double& seconds, const Work& work) {
-    const auto start = std::chrono::steady_clock::now();
-    struct Add {
-        double& seconds;
-        std::chrono::steady_clock::time_point start;
-        ~Add() {
-            seconds +=
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        }
-    } add{seconds, start};
-    return work();
-}
-
-} // namespace
 
 Frame render_frame(const World& world, const FrameSettings& settings,
                    std::atomic<int>* tiles_done) {

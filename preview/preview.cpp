@@ -8,6 +8,7 @@
 #include "raster/window.h"
 #include "trace/image_metrics.h"
 #include "trace/scene_loader.h"
+#include "trace/stopwatch.h"
 
 #include <glad/gl.h>
 
@@ -40,11 +41,7 @@ const std::string_view kPreviewKeys = R"(glint preview keys
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
+using Clock = std::chrono::steady_clock; // for pacing frames; times are measured by Stopwatch
 
 // Frame times of the UI thread: the work between two waits for input, not the wait.
 struct FrameLog {
@@ -112,7 +109,7 @@ class Preview {
     double cursor_x_ = 0, cursor_y_ = 0;
     bool screenshot_requested_ = false;
     int screenshots_ = 0;
-    Clock::time_point title_time_{};
+    Stopwatch title_watch_; // since the title last changed (restart() sets it first)
     std::string title_;
     FrameLog log_;
     Refiner refiner_; // last: its workers stop before anything they read goes
@@ -249,7 +246,7 @@ void Preview::on_scroll(double dy) {
 // A new camera or setting: stop tracing, draw the item buffer (and the flat preview with it),
 // show that, and start tracing tiles.
 void Preview::restart() {
-    const auto start = Clock::now();
+    const Stopwatch watch;
     refiner_.stop();
     job_.reset();
     Scene scene = scene_;
@@ -267,7 +264,7 @@ void Preview::restart() {
     refiner_.start(job_);
     show_base();
     dirty_ = false;
-    log_.restarts.push_back(ms_since(start));
+    log_.restarts.push_back(watch.milliseconds());
     update_title(true);
 }
 
@@ -364,8 +361,8 @@ void Preview::save_screenshot(const std::filesystem::path& path) {
 // The title is the overlay: view, settings, progress and timings. Set only when its text changes:
 // each change is an X event that would wake the idle loop again.
 void Preview::update_title(bool force) {
-    if (!force && ms_since(title_time_) < 250) return;
-    title_time_ = Clock::now();
+    if (!force && title_watch_.milliseconds() < 250) return;
+    title_watch_.restart();
     std::string title = "glint preview — " +
                         std::filesystem::path(options_.scene_name).filename().string() + " — " +
                         std::string(view_label(view_)) + " — " + describe_settings() + " — ";
@@ -394,9 +391,9 @@ int Preview::run() {
     if (!options_.scripted()) std::cout << kPreviewKeys << std::flush;
     // The first item buffer compiles llvmpipe's shader variants and touches every buffer for the
     // first time: start-up, reported apart from the frames.
-    const auto start_up = Clock::now();
+    const Stopwatch start_up;
     restart();
-    log_.start_up = ms_since(start_up);
+    log_.start_up = start_up.milliseconds();
     log_.restarts.clear();
     const auto period = std::chrono::microseconds(16667); // at most 60 frames a second
     auto next_frame = Clock::now();
@@ -409,8 +406,8 @@ int Preview::run() {
                 std::max(0.0, std::chrono::duration<double>(next_frame - Clock::now()).count()));
         else
             glfwWaitEvents();
-        const auto start = Clock::now();
-        next_frame = start + period;
+        const Stopwatch frame_watch;
+        next_frame = Clock::now() + period;
         if (options_.spin != 0 && frames < options_.frames) {
             camera_.orbit(options_.spin, 0);
             dirty_ = true;
@@ -427,7 +424,7 @@ int Preview::run() {
         ++frames;
         const bool done = options_.scripted() && frames >= options_.frames && complete;
         // The first frame puts the first image on screen: part of start-up.
-        (frames == 1 ? log_.first_frame : log_.frames.emplace_back()) = ms_since(start);
+        (frames == 1 ? log_.first_frame : log_.frames.emplace_back()) = frame_watch.milliseconds();
         update_title(complete);
         if (screenshot_requested_ || (done && !options_.screenshot.empty())) {
             std::filesystem::path path = options_.screenshot;

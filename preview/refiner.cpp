@@ -50,8 +50,7 @@ void RefineJob::work(const std::atomic<bool>& cancel) {
         done_[order_[static_cast<std::size_t>(k)]].store(true, std::memory_order_release);
         if (tiles_done_.fetch_add(1, std::memory_order_acq_rel) + 1 == tile_count()) {
             const std::lock_guard lock(totals_mutex_);
-            seconds_ =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+            seconds_ = watch_.seconds();
         }
     }
 }

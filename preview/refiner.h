@@ -7,9 +7,9 @@
 #include "preview/views.h"
 
 #include "trace/render.h"
+#include "trace/stopwatch.h"
 
 #include <atomic>
-#include <chrono>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -62,7 +62,7 @@ class RefineJob {
     std::vector<int> order_; // tile indices, nearest the image centre first
     std::unique_ptr<std::atomic<bool>[]> done_;
     std::atomic<int> next_{0}, tiles_done_{0};
-    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+    Stopwatch watch_; // from the job's making
     mutable std::mutex totals_mutex_;
     RayCounts rays_;
     PrimaryStats stats_;

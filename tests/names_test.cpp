@@ -1,12 +1,16 @@
-// The closed sets' names (trace/names.h): every enumerator has one name, distinct from the
-// others, and reading a name back gives the enumerator; anything else is not a name.
+// The small shared vocabulary: the closed sets' names (trace/names.h), where every enumerator has
+// one name, distinct from the others, and reading a name back gives the enumerator; and the one
+// timer (trace/stopwatch.h).
 #include "frame/frame.h"
 #include "preview/views.h"
 #include "trace/accel/accel_kind.h"
+#include "trace/stopwatch.h"
 
 #include <gtest/gtest.h>
 
 #include <set>
+#include <stdexcept>
+#include <thread>
 
 namespace glint {
 namespace {
@@ -35,6 +39,31 @@ TEST(Names, EveryClosedSetNamesEachMemberOnceAndReadsItBack) {
     expect_round_trip<View>(kViewCount);
     EXPECT_EQ(name_of(ShapeKind::mesh), "mesh");
     EXPECT_EQ(name_of(View::difference), "difference");
+}
+
+// timed() adds the work's wall time to what is there, also when the work throws (a phase that
+// failed still took its time), and passes the work's result through. Lower bounds only: a slow
+// machine cannot fail it.
+TEST(Stopwatch, TimedAddsTheWorksTimeAndPassesItsResultThrough) {
+    double seconds = 1;
+    const int result = timed(seconds, [] {
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+        return 42;
+    });
+    EXPECT_EQ(result, 42);
+    EXPECT_GE(seconds, 1.002);
+    const double before = seconds;
+    EXPECT_THROW(timed(seconds,
+                       []() -> int {
+                           std::this_thread::sleep_for(std::chrono::milliseconds(2));
+                           throw std::runtime_error("failed");
+                       }),
+                 std::runtime_error);
+    EXPECT_GE(seconds, before + 0.002);
+    Stopwatch watch;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    const double lap = watch.lap();
+    EXPECT_GE(lap, 0.002);
 }
 
 } // namespace

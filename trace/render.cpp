@@ -2,7 +2,8 @@
 
 #include "trace/image_metrics.h"
 
-#include <chrono>
+#include "trace/stopwatch.h"
+
 #include <mutex>
 
 namespace glint {
@@ -45,20 +46,14 @@ std::vector<std::uint32_t> object_ids(const std::vector<Hit>& primary) {
 
 RayFrame render_ray_frame(const Scene& scene, std::optional<AccelKind> accel,
                           const TileProgress& progress) {
-    using Clock = std::chrono::steady_clock;
-    const auto since = [](Clock::time_point start) {
-        return std::chrono::duration<double>(Clock::now() - start).count();
-    };
     RayFrame frame;
-    auto start = Clock::now();
+    Stopwatch watch;
     const World world(scene, accel);
-    frame.prepare_seconds = since(start);
-    start = Clock::now();
+    frame.prepare_seconds = watch.lap();
     const std::vector<Hit> primary = primary_hits_by_ray(world, progress);
-    frame.primary_seconds = since(start);
-    start = Clock::now();
+    frame.primary_seconds = watch.lap();
     frame.result = shade_image(world, primary, progress);
-    frame.shading_seconds = since(start);
+    frame.shading_seconds = watch.lap();
     frame.ids = object_ids(primary);
     return frame;
 }

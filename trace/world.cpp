@@ -5,8 +5,8 @@
 #include "trace/shapes/cylinder.h"
 #include "trace/shapes/plane.h"
 #include "trace/shapes/sphere.h"
+#include "trace/stopwatch.h"
 
-#include <chrono>
 #include <cmath>
 
 namespace glint {
@@ -43,7 +43,7 @@ World::World(const Scene& scene, std::optional<AccelKind> accel)
     for (const PointLight& light : scene.lights)
         lights_.push_back({Vec3(light.position - scene.camera.eye), Vec3(light.color)});
 
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch watch;
     for (const TriangleMesh& mesh : scene.meshes) meshes_.push_back(prepare_mesh(mesh));
     std::vector<Bounds> item_bounds;
     for (std::uint32_t i = 0; i < objects_.size(); ++i) {
@@ -57,8 +57,7 @@ World::World(const Scene& scene, std::optional<AccelKind> accel)
     const AccelKind kind =
         accel.value_or(bounded_.size() < kListBelow ? AccelKind::list : AccelKind::bvh);
     accel_ = Accelerator(kind, std::move(item_bounds));
-    build_seconds_ =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    build_seconds_ = watch.seconds();
 }
 
 // A hit counts only when the ray meets the object's box within (0, t_max), as the list has
