@@ -48,8 +48,8 @@ int run_compare(const CompareArgs& args) {
     const Frame hybrid = render_frame(world, settings);
 
     const ImageDifference diff = compare_images(ray.result.image, hybrid.result.image);
-    const double agreement = id_agreement(ray.primary, hybrid.primary);
-    const double pixels = static_cast<double>(ray.primary.size());
+    const double agreement = id_agreement(ray.result.ids, hybrid.result.ids);
+    const double pixels = static_cast<double>(ray.result.ids.size());
     // Per frame, the one-time set-up (context, shaders, upload) aside: what a preview pays again
     // for every frame. The whole-frame ratio counts everything a single render pays.
     const double primary_ratio = hybrid.times.primary_visibility() / ray.times.primary_visibility();

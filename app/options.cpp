@@ -79,9 +79,14 @@ void FrameOptions::add_to(CLI::App& cmd, bool with_mode, bool with_gl) {
 }
 
 FrameSettings FrameOptions::settings() const {
-    // The options' checks admit only these names.
-    return {*from_name<Mode>(mode),    *from_name<GlBackend>(gl), *from_name<RasterMode>(raster),
-            tessellation,              *from_name<Resolve>(resolve), threads};
+    FrameSettings s; // the options' checks admit only these names
+    s.mode = *from_name<Mode>(mode);
+    s.gl = *from_name<GlBackend>(gl);
+    s.raster = *from_name<RasterMode>(raster);
+    s.tessellation = tessellation;
+    s.resolve = *from_name<Resolve>(resolve);
+    s.threads = threads;
+    return s;
 }
 
 std::string FrameOptions::describe() const {

@@ -43,7 +43,6 @@ struct TradeoffArgs {
 // One point of the sweep: everything that may differ from the default setting. The frame's
 // gl and threads come from the command line.
 struct Setting {
-    Precision precision = Precision::f32;
     FrameSettings frame;
     int max_depth = 0;
     float min_reflectivity = 0;
@@ -54,7 +53,7 @@ struct Setting {
     std::string label(const Scene& scene) const {
         const FrameSettings& f = frame;
         std::string s(name_of(f.mode));
-        if (precision == Precision::f64) s.append(" ").append(name_of(precision));
+        if (f.precision == Precision::f64) s.append(" ").append(name_of(f.precision));
         if (f.mode == Mode::hybrid) {
             s.append(" ").append(name_of(f.raster));
             if (f.raster == RasterMode::mesh) s += " tess " + std::to_string(f.tessellation);
@@ -119,7 +118,7 @@ std::vector<std::pair<std::string, Setting>> sweep(const Scene& scene) {
         add("resolution", s);
     }
     Setting precise = ray;
-    precise.precision = Precision::f64;
+    precise.frame.precision = Precision::f64;
     add("precision", precise);
     // The exact image's own setting in float: what double precision alone adds.
     Setting untruncated = ray;
@@ -133,20 +132,17 @@ struct Run {
     std::string knobs; // every sweep that reached this setting, '+'-joined
     std::string label;
     Setting setting;
-    PhaseTimes times;
-    double prepare = 0;
-    Image image; // at full size
-    std::vector<std::uint32_t> ids;
-    RayCounts rays;
+    Frame frame; // its image enlarged to full size
     CutoffBound bound;
     std::optional<bool> bound_held; // float ray runs at full size: checked pixel by pixel
     ImageDifference diff{};
     std::optional<double> agreement; // against the reference's ids; not for enlarged runs
-    std::string gl_renderer;         // hybrid runs
 
     // Per frame: everything but the one-time GL set-up (context, shader compilation).
-    double frame_seconds() const { return prepare + times.total() - times.context - times.compile; }
-    double total_seconds() const { return prepare + times.total(); }
+    double frame_seconds() const {
+        return frame.times.total() - frame.times.context - frame.times.compile;
+    }
+    double total_seconds() const { return frame.times.total(); }
 };
 
 // Pixel replication up to width × height (nearest neighbour: what a preview shows).
@@ -169,32 +165,13 @@ Run render_once(const Scene& scene, const Setting& s, const TradeoffArgs& args) 
     copy.camera.height = std::max(1, scene.camera.height / s.divisor);
     Run run;
     run.setting = s;
-    const TileProgress progress{args.threads, nullptr};
-    if (s.precision == Precision::f64) {
-        RayFrame frame = render_ray_frame(Precision::f64, copy, s.accel, progress);
-        run.prepare = frame.prepare_seconds;
-        run.times.primary = frame.primary_seconds;
-        run.times.shading = frame.shading_seconds;
-        run.ids = std::move(frame.ids);
-        run.bound = cutoff_bound(copy, frame.result);
-        run.rays = frame.result.rays;
-        run.image = std::move(frame.result.image);
-    } else {
-        const Stopwatch watch;
-        const World world(copy, s.accel);
-        run.prepare = watch.seconds();
-        FrameSettings settings = s.frame;
-        settings.gl = *from_name<GlBackend>(args.gl); // checked by --gl
-        settings.threads = args.threads;
-        Frame frame = render_frame(world, settings);
-        run.times = frame.times;
-        run.gl_renderer = frame.gl_renderer;
-        run.ids = object_ids(frame.primary);
-        run.bound = cutoff_bound(copy, frame.result);
-        run.rays = frame.result.rays;
-        run.image = std::move(frame.result.image);
-    }
-    run.image = enlarge(run.image, scene.camera.width, scene.camera.height);
+    FrameSettings settings = s.frame;
+    settings.gl = *from_name<GlBackend>(args.gl); // checked by --gl
+    settings.threads = args.threads;
+    run.frame = render_frame(copy, s.accel, settings);
+    run.bound = cutoff_bound(copy, run.frame.result);
+    Image& image = run.frame.result.image;
+    image = enlarge(image, scene.camera.width, scene.camera.height);
     return run;
 }
 
@@ -321,23 +298,25 @@ void write_csv(const std::vector<SceneResult>& results, const fs::path& path) {
             const Run& r = sr.runs[i];
             const Setting& s = r.setting;
             const FrameSettings& f = s.frame;
+            const PhaseTimes& t = r.frame.times;
+            const RayCounts& rays = r.frame.result.rays;
             const bool hybrid = f.mode == Mode::hybrid;
             csv << sr.name << ',' << sr.scene.camera.width << ',' << sr.scene.camera.height << ','
                 << r.knobs << ",\"" << r.label << "\","
-                << name_of(s.precision) << ',' << name_of(f.mode) << ','
+                << name_of(f.precision) << ',' << name_of(f.mode) << ','
                 << (hybrid ? name_of(f.raster) : "")
                 << ','
                 << (hybrid && f.raster == RasterMode::mesh ? std::to_string(f.tessellation) : "")
                 << ',' << (hybrid ? name_of(f.resolve) : "") << ','
                 << s.max_depth << ',' << s.min_reflectivity << ','
                 << (s.accel ? name_of(*s.accel) : "auto") << ',' << s.divisor << ','
-                << r.frame_seconds() << ',' << r.total_seconds() << ',' << r.prepare << ','
-                << r.times.context << ',' << r.times.compile << ',' << r.times.upload << ','
-                << r.times.raster << ',' << r.times.primary << ',' << r.times.shading << ','
+                << r.frame_seconds() << ',' << r.total_seconds() << ',' << t.prepare << ','
+                << t.context << ',' << t.compile << ',' << t.upload << ',' << t.raster << ','
+                << t.primary << ',' << t.shading << ','
                 << (std::isinf(r.diff.psnr_db) ? "inf" : format("%.3f", r.diff.psnr_db)) << ','
                 << r.diff.max_abs_error << ',' << r.diff.fraction_over_one << ','
-                << (r.agreement ? format("%.6f", *r.agreement) : "") << ',' << r.rays.primary << ','
-                << r.rays.shadow << ',' << r.rays.reflection << ',' << r.bound.max << ','
+                << (r.agreement ? format("%.6f", *r.agreement) : "") << ',' << rays.primary << ','
+                << rays.shadow << ',' << rays.reflection << ',' << r.bound.max << ','
                 << (r.bound_held ? (*r.bound_held ? "yes" : "no") : "") << ','
                 << (std::find(front.begin(), front.end(), i) != front.end() ? "yes" : "") << '\n';
         }
@@ -403,7 +382,7 @@ std::string markdown(const std::vector<SceneResult>& results, const TradeoffArgs
             md << "| " << r.knobs << " | " << r.label << " | " << format("%.4f", r.frame_seconds())
                << " | " << psnr_text(r.diff.psnr_db) << " | " << r.diff.max_abs_error << " | "
                << format("%.3f%%", 100 * r.diff.fraction_over_one) << " | "
-               << (r.agreement ? format("%.4f", *r.agreement) : "–") << " | " << r.rays.reflection
+               << (r.agreement ? format("%.4f", *r.agreement) : "–") << " | " << r.frame.result.rays.reflection
                << " | " << r.bound.max << "/255"
                << (r.bound_held ? (*r.bound_held ? ", held" : ", **violated**") : "") << " |\n";
         md << "\n</details>\n\n";
@@ -461,14 +440,15 @@ int run_tradeoff(const TradeoffArgs& args) {
         const Scene& scene = sr.scene;
         Scene deep = scene;
         deep.render = {kMaxDepth, 0.0f};
-        const Stopwatch reference_watch;
-        const RayFrame reference =
-            render_ray_frame(Precision::f64, deep, std::nullopt, {args.threads, nullptr});
-        sr.reference_seconds = reference_watch.seconds();
+        FrameSettings exact;
+        exact.mode = Mode::ray;
+        exact.threads = args.threads;
+        exact.precision = Precision::f64;
+        const Frame reference = render_frame(deep, std::nullopt, exact);
+        sr.reference_seconds = reference.times.total();
         sr.reference_bound = cutoff_bound(deep, reference.result);
-        const Image untruncated_float =
-            render_ray_frame(Precision::f32, deep, std::nullopt, {args.threads, nullptr})
-                .result.image;
+        exact.precision = Precision::f32;
+        const Image untruncated_float = render_frame(deep, std::nullopt, exact).result.image;
 
         const auto settings = sweep(scene);
         std::map<std::string, std::size_t> seen;
@@ -483,16 +463,18 @@ int run_tradeoff(const TradeoffArgs& args) {
             Run run = measure(scene, setting, args);
             run.knobs = knob;
             run.label = label;
-            run.diff = compare_images(reference.result.image, run.image);
-            if (setting.divisor == 1) run.agreement = id_agreement(reference.ids, run.ids);
-            if (setting.precision == Precision::f32 && setting.frame.mode == Mode::ray &&
+            const RenderResult& result = run.frame.result;
+            run.diff = compare_images(reference.result.image, result.image);
+            if (setting.divisor == 1)
+                run.agreement = id_agreement(reference.result.ids, result.ids);
+            if (setting.frame.precision == Precision::f32 && setting.frame.mode == Mode::ray &&
                 setting.divisor == 1)
-                run.bound_held = cutoff_violations(run.bound, run.image, untruncated_float) == 0;
+                run.bound_held = cutoff_violations(run.bound, result.image, untruncated_float) == 0;
             std::printf("  %-36s %8.4f s  PSNR %6s dB  max error %3d/255\n", label.c_str(),
                         run.frame_seconds(), psnr_text(run.diff.psnr_db).c_str(),
                         run.diff.max_abs_error);
             std::fflush(stdout);
-            if (!run.gl_renderer.empty()) gl_renderer = run.gl_renderer;
+            if (!run.frame.gl_renderer.empty()) gl_renderer = run.frame.gl_renderer;
             seen[label] = sr.runs.size();
             sr.runs.push_back(std::move(run));
         }

@@ -2,6 +2,8 @@
 
 #include "trace/stopwatch.h"
 
+#include <stdexcept>
+
 namespace glint {
 
 Frame render_frame(const World& world, const FrameSettings& settings,
@@ -23,11 +25,28 @@ Frame render_frame(const World& world, const FrameSettings& settings,
         frame.deviations = items.deviations();
         source = {&frame.items->ids, settings.resolve};
     }
-    frame.primary = timed(frame.times.primary, [&] {
+    const std::vector<Hit> primary = timed(frame.times.primary, [&] {
         return primary_hits(world, source, frame.primary_stats, progress);
     });
     frame.result =
-        timed(frame.times.shading, [&] { return shade_image(world, frame.primary, progress); });
+        timed(frame.times.shading, [&] { return shade_image(world, primary, progress); });
+    return frame;
+}
+
+Frame render_frame(const Scene& scene, std::optional<AccelKind> accel,
+                   const FrameSettings& settings, std::atomic<int>* tiles_done) {
+    if (settings.precision == Precision::f64) {
+        if (settings.mode != Mode::ray)
+            throw std::invalid_argument("double precision renders in ray mode only");
+        Frame frame;
+        frame.result = render_ray_frame(Precision::f64, scene, accel,
+                                        {settings.threads, tiles_done}, frame.times);
+        return frame;
+    }
+    double prepare = 0;
+    const World world = timed(prepare, [&] { return World(scene, accel); });
+    Frame frame = render_frame(world, settings, tiles_done);
+    frame.times.prepare = prepare;
     return frame;
 }
 

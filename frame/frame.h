@@ -26,23 +26,12 @@ struct FrameSettings {
     int tessellation = kDefaultTessellation;
     Resolve resolve = Resolve::exact;
     int threads = 0;
+    Precision precision = Precision::f32; // double: ray mode only, from a scene (below)
 };
 
-struct PhaseTimes {
-    double context = 0; // GL context creation
-    double compile = 0; // shader compilation (first use; ~0.2 s on llvmpipe)
-    double upload = 0;  // tessellation and buffer upload
-    double raster = 0;  // drawing the item buffer and reading it back
-    double primary = 0; // resolving primary hits (hybrid) or casting primary rays (ray)
-    double shading = 0; // shading, shadow and reflection rays
-
-    double primary_visibility() const { return raster + primary; }
-    double total() const { return context + compile + upload + raster + primary + shading; }
-};
-
+// The one result of a render, in either mode and either precision.
 struct Frame {
-    RenderResult result;
-    std::vector<Hit> primary;
+    RenderResult result; // image, rays, cut-off weights, primary ids
     PhaseTimes times;
     PrimaryStats primary_stats;            // hybrid only
     std::optional<ItemBufferResult> items; // hybrid only
@@ -50,8 +39,15 @@ struct Frame {
     std::string gl_renderer;               // hybrid only
 };
 
-// Throws GlError when hybrid mode cannot get a GL context.
+// From a prepared World (float precision; times.prepare stays 0). Throws GlError when hybrid
+// mode cannot get a GL context.
 Frame render_frame(const World& world, const FrameSettings& settings,
                    std::atomic<int>* tiles_done = nullptr);
+
+// From a scene: prepares the World in settings.precision (timed as times.prepare), then renders.
+// Double precision is the reference tracer and traces rays only: hybrid mode with it throws
+// std::invalid_argument.
+Frame render_frame(const Scene& scene, std::optional<AccelKind> accel,
+                   const FrameSettings& settings, std::atomic<int>* tiles_done = nullptr);
 
 } // namespace glint

@@ -96,9 +96,9 @@ TEST_P(GlTest, ExactResolveIsRightWhereTrustIsWrong) {
     settings.mode = Mode::ray;
     const Frame ray = render_frame(world, settings);
     const std::size_t centre = 15 * 31 + 15;
-    EXPECT_EQ(ray.primary[centre].object, 1u);
-    EXPECT_EQ(trust.primary[centre].object, 0u) << "trust should have believed the item buffer";
-    EXPECT_EQ(exact.primary[centre].object, 1u);
+    EXPECT_EQ(ray.result.ids[centre], 1u + 1);
+    EXPECT_EQ(trust.result.ids[centre], 0u + 1) << "trust should have believed the item buffer";
+    EXPECT_EQ(exact.result.ids[centre], 1u + 1);
     EXPECT_GT(exact.primary_stats.corrected, 0u);
     EXPECT_EQ(exact.result.image.rgb, ray.result.image.rgb);
 }
@@ -129,7 +129,7 @@ TEST_P(GlTest, ExactResolveReproducesRayModeOnACrowdedScene) {
         const Frame ray = render_frame(world, settings);
         settings.mode = Mode::hybrid;
         const Frame hybrid = render_frame(world, settings);
-        EXPECT_EQ(id_agreement(ray.primary, hybrid.primary), 1.0) << name_of(raster);
+        EXPECT_EQ(id_agreement(ray.result.ids, hybrid.result.ids), 1.0) << name_of(raster);
         EXPECT_EQ(ray.result.image.rgb, hybrid.result.image.rgb) << name_of(raster);
         EXPECT_GT(hybrid.primary_stats.edges, 0u);
     }
@@ -153,7 +153,7 @@ TEST(GlStability, AScaledOrDistantSceneRendersInHybridModeAsTheOriginalInRayMode
         const Frame hybrid = render_frame(World(testing::moved(scene, s, d)), settings);
         const ImageDifference diff = compare_images(reference.result.image, hybrid.result.image);
         EXPECT_LE(diff.fraction_over_one, 1e-4) << "scale " << s << ": " << diff.pixels_over_one;
-        EXPECT_GE(id_agreement(reference.primary, hybrid.primary), 0.9999) << "scale " << s;
+        EXPECT_GE(id_agreement(reference.result.ids, hybrid.result.ids), 0.9999) << "scale " << s;
     }
 }
 
@@ -177,12 +177,12 @@ TEST(GlStability, ReverseZSeparatesWallsAMillionAwayWithANearObjectInView) {
     FrameSettings settings;
     settings.mode = Mode::ray;
     const Frame ray = render_frame(world, settings);
-    const auto id = [&](int x, int y) { return ray.primary[y * w + x].object; };
+    const auto id = [&](int x, int y) { return ray.result.ids[y * w + x]; };
     settings.mode = Mode::hybrid;
     for (const RasterMode raster : {RasterMode::mesh, RasterMode::proxy}) {
         settings.raster = raster;
         settings.resolve = Resolve::exact;
-        EXPECT_EQ(id_agreement(ray.primary, render_frame(world, settings).primary), 1.0)
+        EXPECT_EQ(id_agreement(ray.result.ids, render_frame(world, settings).result.ids), 1.0)
             << name_of(raster);
         settings.resolve = Resolve::trust;
         const Frame trust = render_frame(world, settings);
@@ -194,13 +194,13 @@ TEST(GlStability, ReverseZSeparatesWallsAMillionAwayWithANearObjectInView) {
                     for (int dx = -1; dx <= 1; ++dx) uniform &= id(x + dx, y + dy) == id(x, y);
                 if (!uniform) continue;
                 ++interior;
-                wrong += trust.primary[y * w + x].object != id(x, y);
+                wrong += trust.result.ids[y * w + x] != id(x, y);
             }
         EXPECT_EQ(wrong, 0) << name_of(raster) << ", of " << interior << " pixels";
     }
     std::size_t front = 0;
-    for (const Hit& hit : ray.primary) front += hit.object == 2;
-    EXPECT_GT(front, ray.primary.size() / 10) << "the front wall should fill part of the view";
+    for (const std::uint32_t id : ray.result.ids) front += id == 2 + 1; // object 2
+    EXPECT_GT(front, ray.result.ids.size() / 10) << "the front wall should fill part of the view";
 }
 
 // The preview's flat image comes from the same pass as the ids: every pixel an object covers
@@ -265,7 +265,7 @@ TEST_P(HybridTest, HybridImageAgreesWithRayImage) {
     settings.mode = Mode::hybrid;
     const Frame hybrid = render_frame(world, settings);
     const ImageDifference diff = compare_images(ray.result.image, hybrid.result.image);
-    const double agreement = id_agreement(ray.primary, hybrid.primary);
+    const double agreement = id_agreement(ray.result.ids, hybrid.result.ids);
     if (c.resolve == Resolve::exact) {
         // The acceptance bound: 99.99% of pixels within 1/255. Exact resolve reproduces ray
         // mode's hit wherever the item buffer is conservative, so only a pixel centre within

@@ -2,18 +2,27 @@
 // bound (trace/cutoff.h) checked pixel by pixel against renders that were not cut off.
 #include "test_scenes.h"
 
+#include "frame/frame.h"
 #include "trace/cutoff.h"
 #include "trace/image_metrics.h"
-#include "trace/precision.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <stdexcept>
 
 namespace glint {
 namespace {
 
 using testing::shipped;
+
+// A ray-mode render through the frame layer, in either precision.
+RenderResult ray_render(const Scene& scene, Precision precision = Precision::f32) {
+    FrameSettings settings;
+    settings.mode = Mode::ray;
+    settings.precision = precision;
+    return render_frame(scene, std::nullopt, settings).result;
+}
 
 class ShippedScene : public ::testing::TestWithParam<const char*> {};
 
@@ -23,13 +32,22 @@ class ShippedScene : public ::testing::TestWithParam<const char*> {};
 // shadow boundaries), and the float image within 45 dB of the double one overall.
 TEST_P(ShippedScene, FloatRendersWhatTheDoublePrecisionReferenceRenders) {
     const Scene scene = shipped(GetParam(), 200, 150);
-    const RayFrame single = render_ray_frame(Precision::f32, scene, std::nullopt);
-    const RayFrame reference = render_ray_frame(Precision::f64, scene, std::nullopt);
+    const RenderResult single = ray_render(scene);
+    const RenderResult reference = ray_render(scene, Precision::f64);
     EXPECT_GE(id_agreement(reference.ids, single.ids), 0.999);
-    const ImageDifference diff = compare_images(reference.result.image, single.result.image);
+    const ImageDifference diff = compare_images(reference.image, single.image);
     EXPECT_LE(diff.fraction_over_one, 0.002);
     EXPECT_GE(diff.psnr_db, 45.0);
-    EXPECT_EQ(reference.result.rays.primary, single.result.rays.primary);
+    EXPECT_EQ(reference.rays.primary, single.rays.primary);
+}
+
+// The reference tracer has no item buffer (that is drawn from the float world): asking for one
+// is refused before anything is prepared, not silently traced by ray.
+TEST(Precision, DoublePrecisionInHybridModeIsRefused) {
+    FrameSettings settings;
+    settings.precision = Precision::f64;
+    EXPECT_THROW(render_frame(shipped("default", 8, 6), std::nullopt, settings),
+                 std::invalid_argument);
 }
 
 // The bound is a bound: against a render of the same scene with reflections followed as deep as
@@ -39,13 +57,12 @@ TEST_P(ShippedScene, FloatRendersWhatTheDoublePrecisionReferenceRenders) {
 TEST_P(ShippedScene, TheReflectionCutOffBoundHoldsOnEveryPixel) {
     Scene deep = shipped(GetParam(), 160, 120);
     deep.render = {64, 0.0f};
-    const Image untruncated = render_ray_frame(Precision::f32, deep, std::nullopt).result.image;
+    const Image untruncated = ray_render(deep).image;
     for (const int depth : {0, 1, 2, 3, 5, 8}) {
         for (const float cutoff : {0.0f, 0.01f, 0.1f}) {
             Scene scene = deep;
             scene.render = {depth, cutoff};
-            const RenderResult truncated =
-                render_ray_frame(Precision::f32, scene, std::nullopt).result;
+            const RenderResult truncated = ray_render(scene);
             const CutoffBound bound = cutoff_bound(scene, truncated);
             const std::uint64_t violations = cutoff_violations(bound, truncated.image, untruncated);
             EXPECT_EQ(violations, 0u) << "max_depth " << depth << ", min_reflectivity " << cutoff;
@@ -66,7 +83,7 @@ TEST(Cutoff, TheBoundShrinksWithDepthBetweenFacingMirrors) {
     for (const int depth : {0, 4, 16, 64}) {
         scene.render.max_depth = depth;
         const CutoffBound bound =
-            cutoff_bound(scene, render_ray_frame(Precision::f32, scene, std::nullopt).result);
+            cutoff_bound(scene, ray_render(scene));
         EXPECT_LE(bound.max, previous) << "max_depth " << depth;
         previous = bound.max;
     }
@@ -78,7 +95,7 @@ TEST(Cutoff, ASceneWithoutMirrorsHasANullBound) {
     Scene scene = shipped("shadows", 80, 60);
     scene.render.max_depth = 0;
     const CutoffBound bound =
-        cutoff_bound(scene, render_ray_frame(Precision::f32, scene, std::nullopt).result);
+        cutoff_bound(scene, ray_render(scene));
     EXPECT_EQ(bound.max, 0);
     EXPECT_EQ(bound.largest_omitted_weight, 0.0);
 }

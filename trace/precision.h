@@ -25,32 +25,44 @@ struct RayCounts {
     }
 };
 
+// The pixels of one render, whichever mode and precision made them; per pixel, row-major, top
+// row first. frame/frame.h's Frame wraps it with the phase times.
 struct RenderResult {
     Image image;
     RayCounts rays;
-    // Per pixel (row-major, top row first): the path weight of the reflection ray that
-    // max_depth or min_reflectivity kept from being cast, 0 where none was. Perfect reflection
-    // makes each pixel's path one chain, so a pixel omits at most one ray (trace/cutoff.h).
+    // The path weight of the reflection ray that max_depth or min_reflectivity kept from being
+    // cast, 0 where none was. Perfect reflection makes each pixel's path one chain, so a pixel
+    // omits at most one ray (trace/cutoff.h).
     std::vector<float> omitted_weight;
+    std::vector<std::uint32_t> ids; // the primary hit's object index + 1; 0 for background
 };
 
-// A ray-mode frame (primary rays, then shading), its object ids and its phase times.
-struct RayFrame {
-    RenderResult result;
-    std::vector<std::uint32_t> ids; // per pixel, object index + 1; 0 for background
-    double prepare_seconds = 0;     // World: transforms, bounds, acceleration structures
-    double primary_seconds = 0;
-    double shading_seconds = 0;
+// Wall time of each phase of a frame, in seconds (trace/stopwatch.h).
+struct PhaseTimes {
+    double prepare = 0; // the World: transforms, bounds, structures (when the frame built it)
+    double context = 0; // GL context creation
+    double compile = 0; // shader compilation (first use; ~0.2 s on llvmpipe)
+    double upload = 0;  // tessellation and buffer upload
+    double raster = 0;  // drawing the item buffer and reading it back
+    double primary = 0; // resolving primary hits (hybrid) or casting primary rays (ray)
+    double shading = 0; // shading, shadow and reflection rays
+
+    double primary_visibility() const { return raster + primary; }
+    double total() const {
+        return prepare + context + compile + upload + raster + primary + shading;
+    }
 };
 
-// The same function in each precision, one per library (glint_trace, glint_trace_f64).
+// A ray-mode render from the scene (World, primary rays, shading), timing its phases into
+// `times`: the same function in each precision, one per library (glint_trace, glint_trace_f64).
+// frame/frame.h's render_frame is the way in; this is what it calls for double precision.
 inline namespace f32 {
-RayFrame render_ray_frame(const Scene& scene, std::optional<AccelKind> accel,
-                          const TileProgress& progress = {});
+RenderResult render_ray_frame(const Scene& scene, std::optional<AccelKind> accel,
+                              const TileProgress& progress, PhaseTimes& times);
 }
 inline namespace f64 {
-RayFrame render_ray_frame(const Scene& scene, std::optional<AccelKind> accel,
-                          const TileProgress& progress = {});
+RenderResult render_ray_frame(const Scene& scene, std::optional<AccelKind> accel,
+                              const TileProgress& progress, PhaseTimes& times);
 }
 
 enum class Precision { f32, f64 };
@@ -59,11 +71,11 @@ template <> struct EnumNames<Precision> {
     static constexpr std::array<std::string_view, 2> names = {"float", "double"};
 };
 
-inline RayFrame render_ray_frame(Precision precision, const Scene& scene,
-                                 std::optional<AccelKind> accel,
-                                 const TileProgress& progress = {}) {
-    return precision == Precision::f64 ? f64::render_ray_frame(scene, accel, progress)
-                                       : f32::render_ray_frame(scene, accel, progress);
+inline RenderResult render_ray_frame(Precision precision, const Scene& scene,
+                                     std::optional<AccelKind> accel, const TileProgress& progress,
+                                     PhaseTimes& times) {
+    return precision == Precision::f64 ? f64::render_ray_frame(scene, accel, progress, times)
+                                       : f32::render_ray_frame(scene, accel, progress, times);
 }
 
 } // namespace glint

@@ -13,7 +13,7 @@ RenderResult shade_image(const World& world, const std::vector<Hit>& primary,
                          const TileProgress& progress) {
     const PinholeCamera& camera = world.camera();
     const int width = camera.width();
-    RenderResult result{Image(width, camera.height()), {}, {}};
+    RenderResult result{Image(width, camera.height()), {}, {}, object_ids(primary)};
     result.omitted_weight.assign(primary.size(), 0.0f);
     std::mutex counts_mutex;
     for_each_tile(width, camera.height(), progress, [&](int x0, int y0, int x1, int y1) {
@@ -44,18 +44,12 @@ std::vector<std::uint32_t> object_ids(const std::vector<Hit>& primary) {
     return ids;
 }
 
-RayFrame render_ray_frame(const Scene& scene, std::optional<AccelKind> accel,
-                          const TileProgress& progress) {
-    RayFrame frame;
-    Stopwatch watch;
-    const World world(scene, accel);
-    frame.prepare_seconds = watch.lap();
-    const std::vector<Hit> primary = primary_hits_by_ray(world, progress);
-    frame.primary_seconds = watch.lap();
-    frame.result = shade_image(world, primary, progress);
-    frame.shading_seconds = watch.lap();
-    frame.ids = object_ids(primary);
-    return frame;
+RenderResult render_ray_frame(const Scene& scene, std::optional<AccelKind> accel,
+                              const TileProgress& progress, PhaseTimes& times) {
+    const World world = timed(times.prepare, [&] { return World(scene, accel); });
+    const std::vector<Hit> primary =
+        timed(times.primary, [&] { return primary_hits_by_ray(world, progress); });
+    return timed(times.shading, [&] { return shade_image(world, primary, progress); });
 }
 
 } // namespace GLINT_PRECISION

@@ -25,10 +25,5 @@ RenderResult render(const World& world, const TileProgress& progress = {});
 // Object index + 1 per pixel, 0 where the primary ray hit nothing.
 std::vector<std::uint32_t> object_ids(const std::vector<Hit>& primary);
 
-// Fraction of pixels whose primary hits name the same object (both missing counts as agreeing).
-inline double id_agreement(const std::vector<Hit>& a, const std::vector<Hit>& b) {
-    return glint::id_agreement(object_ids(a), object_ids(b));
-}
-
 } // namespace GLINT_PRECISION
 } // namespace glint
