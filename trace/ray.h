@@ -20,7 +20,8 @@ inline constexpr std::uint32_t kNoObject = std::numeric_limits<std::uint32_t>::m
 struct Hit {
     Real t = kInfinity;
     std::uint32_t object = kNoObject;
-    std::uint32_t primitive = 0;
+    std::uint32_t primitive = 0; // the shape's part (ShapeHit::part)
+    Real u = 0, v = 0;           // where on it (ShapeHit::u, v): World::surface needs no new test
 
     bool found() const { return object != kNoObject; }
 };

@@ -117,7 +117,7 @@ Hit World::closest(const Ray& ray, Real t_max, std::uint32_t skip, Counters& cou
         const ShapeHit h =
             intersect_object(objects_[object], ray, slab, limit, boxes_tested, counters);
         if (h.t < best.t || (h.t == best.t && best.found() && object < best.object))
-            best = {h.t, object, h.part};
+            best = {h.t, object, h.part, h.u, h.v};
     };
     for (const std::uint32_t object : unbounded_) counters.primitive(), consider(object);
     Real limit = loose(best.t);
@@ -171,7 +171,7 @@ bool World::occluded(const Ray& ray, Real t_max, std::uint32_t skip) const {
 Hit World::intersect_one(std::uint32_t object, const Ray& ray, Real t_max) const {
     NoCounters none;
     const ShapeHit h = intersect_object(objects_[object], ray, LazySlab(ray), t_max, false, none);
-    return h.found() ? Hit{h.t, object, h.part} : Hit{};
+    return h.found() ? Hit{h.t, object, h.part, h.u, h.v} : Hit{};
 }
 
 SurfacePoint World::surface(const Ray& ray, const Hit& hit) const {
@@ -199,7 +199,7 @@ SurfacePoint World::surface(const Ray& ray, const Hit& hit) const {
         break;
     case ShapeKind::triangle:
     case ShapeKind::mesh:
-        s = mesh_surface(meshes_[object.mesh], local, hit.primitive);
+        s = mesh_surface(meshes_[object.mesh], hit.primitive, hit.u, hit.v);
         break;
     }
     Vec3 normal = m.normal_to_world(s.normal);

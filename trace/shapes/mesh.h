@@ -113,7 +113,7 @@ ShapeHit intersect_mesh(const Mesh& mesh, const Ray& ray, Real t_max, Counters& 
     const auto test = [&](std::uint32_t i, Real& box_limit) {
         const std::array<Vec3, 3>& c = mesh.corners[i];
         const TriangleHit h = intersect_triangle(c[0], c[1], c[2], prepared);
-        if (h.t > 0 && h.t < limit && h.t < best.t) best = {h.t, i}, limit = h.t;
+        if (h.t > 0 && h.t < limit && h.t < best.t) best = {h.t, i, h.u, h.v}, limit = h.t;
         box_limit = loose(limit);
         return false;
     };
@@ -128,20 +128,21 @@ ShapeHit intersect_mesh(const Mesh& mesh, const Ray& ray, Real t_max, Counters& 
     return best;
 }
 
-inline SurfaceSample mesh_surface(const Mesh& mesh, const Ray& ray, std::uint32_t triangle) {
+// The surface at barycentric weights (u, v) of triangle `triangle`'s vertices 1 and 2, as its
+// intersection found them (ShapeHit::u, v).
+inline SurfaceSample mesh_surface(const Mesh& mesh, std::uint32_t triangle, Real u, Real v) {
     const glm::uvec3 tri = mesh.triangles[triangle];
     const Vec3 p0 = mesh.vertices[tri.x], p1 = mesh.vertices[tri.y], p2 = mesh.vertices[tri.z];
-    const TriangleHit h = intersect_triangle(p0, p1, p2, ray);
-    const Real b0 = 1.0_r - h.u - h.v;
+    const Real b0 = 1.0_r - u - v;
     // Barycentric interpolation keeps the point on the triangle's plane up to γ7·Σ|bᵢ·pᵢ|
     // (pbrt-v4, Triangle::InteractionFromIntersection).
-    const Vec3 point = b0 * p0 + h.u * p1 + h.v * p2;
-    const Vec3 error = gamma(7) * (glm::abs(b0 * p0) + glm::abs(h.u * p1) + glm::abs(h.v * p2));
+    const Vec3 point = b0 * p0 + u * p1 + v * p2;
+    const Vec3 error = gamma(7) * (glm::abs(b0 * p0) + glm::abs(u * p1) + glm::abs(v * p2));
     const Vec3 facet = glm::normalize(glm::cross(p1 - p0, p2 - p0));
     if (mesh.normals.empty()) return {point, facet, error};
     // Smooth shading (Phong): the vertex normals interpolated with the hit's barycentrics.
     const Vec3 shading =
-        b0 * mesh.normals[tri.x] + h.u * mesh.normals[tri.y] + h.v * mesh.normals[tri.z];
+        b0 * mesh.normals[tri.x] + u * mesh.normals[tri.y] + v * mesh.normals[tri.z];
     return {point, facet, error, shading};
 }
 

@@ -11,6 +11,9 @@ inline namespace GLINT_PRECISION {
 struct ShapeHit {
     Real t = kInfinity;
     std::uint32_t part = 0; // box face, cylinder/cone side or cap, triangle index
+    // Where on the part, when the surface needs it from the intersection: a triangle's
+    // barycentric weights of its vertices 1 and 2 (0 for the other shapes).
+    Real u = 0, v = 0;
 
     bool found() const { return t != kInfinity; }
 };
