@@ -183,7 +183,7 @@ struct ItemBuffer::Impl {
             glGenRenderbuffers(1, &depth);
         }
         glBindTexture(GL_TEXTURE_2D, colour);
-        glTexImage2D(GL_TEXTURE_2D, 0, GL_RG32UI, w, h, 0, GL_RG_INTEGER, GL_UNSIGNED_INT, nullptr);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_R32UI, w, h, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         glBindRenderbuffer(GL_RENDERBUFFER, depth);
@@ -194,7 +194,7 @@ struct ItemBuffer::Impl {
         if (flat_colour) attach_flat_colour();
         if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
             throw GlError(
-                "the item buffer's framebuffer (RG32UI + 32-bit float depth) is incomplete");
+                "the item buffer's framebuffer (R32UI + 32-bit float depth) is incomplete");
     }
 
     void attach_flat_colour() {
@@ -250,32 +250,29 @@ struct ItemBuffer::Impl {
         result.ids.width = width, result.ids.height = height;
         result.ids.ids.resize(pixels);
         result.ids.view_depth.resize(pixels);
-        result.primitives.resize(pixels);
         std::vector<float> depths(pixels);
         glPixelStorei(GL_PACK_ALIGNMENT, 4);
-        // Ids through a pixel-pack buffer: once warm, Mesa copies RG32UI into it as it is
+        // Ids through a pixel-pack buffer: once warm, Mesa copies R32UI into it as it is
         // (9 ms at 1600×1200 on llvmpipe), where a plain glReadPixels or glGetTexImage converts
         // pixel by pixel (65 ms).
         if (!pack_buffer) glGenBuffers(1, &pack_buffer);
         glBindBuffer(GL_PIXEL_PACK_BUFFER, pack_buffer);
-        glBufferData(GL_PIXEL_PACK_BUFFER, static_cast<GLsizeiptr>(pixels * 8), nullptr,
+        glBufferData(GL_PIXEL_PACK_BUFFER, static_cast<GLsizeiptr>(pixels * 4), nullptr,
                      GL_STREAM_READ);
         glReadBuffer(GL_COLOR_ATTACHMENT0);
-        glReadPixels(0, 0, width, height, GL_RG_INTEGER, GL_UNSIGNED_INT, nullptr);
-        const auto* rg = static_cast<const std::uint32_t*>(glMapBufferRange(
-            GL_PIXEL_PACK_BUFFER, 0, static_cast<GLsizeiptr>(pixels * 8), GL_MAP_READ_BIT));
+        glReadPixels(0, 0, width, height, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+        const auto* drawn = static_cast<const std::uint32_t*>(glMapBufferRange(
+            GL_PIXEL_PACK_BUFFER, 0, static_cast<GLsizeiptr>(pixels * 4), GL_MAP_READ_BIT));
         glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
         glReadPixels(0, 0, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, depths.data());
         std::uint32_t* ids = result.ids.ids.data();
-        std::uint32_t* primitives = result.primitives.data();
         float* view_depth = result.ids.view_depth.data();
         for (int y = 0; y < height; ++y) {
             const std::size_t from =
                 static_cast<std::size_t>(height - 1 - y) * width; // GL's row 0 is the bottom
             const std::size_t to = static_cast<std::size_t>(y) * width;
             for (int x = 0; x < width; ++x) {
-                ids[to + x] = rg[2 * (from + x)];
-                primitives[to + x] = rg[2 * (from + x) + 1];
+                ids[to + x] = drawn[from + x];
                 const float d = depths[from + x];
                 view_depth[to + x] = d > 0 ? near / d : kInfinity;
             }
@@ -432,8 +429,6 @@ ItemBufferResult ItemBuffer::draw(const World& world, bool flat_preview) {
             glUniform2f(uniform("viewport"), static_cast<float>(camera.width()),
                         static_cast<float>(camera.height()));
             glUniform1f(uniform("near"), near);
-        } else {
-            glUniform1ui(uniform("primitive_base"), 0);
         }
         if (item.full_screen) {
             glBindVertexArray(gl.empty_vao);
@@ -467,7 +462,6 @@ ItemBufferResult ItemBuffer::draw(const World& world, bool flat_preview) {
         glUniform1i(uniform("flat_preview"), flat_preview);
         glUniform1i(uniform("instanced"), 1);
         glUniform1i(uniform("full_screen"), 0);
-        glUniform1ui(uniform("primitive_base"), 0);
         std::size_t first = 0;
         for (std::size_t geometry = 0; geometry < gl.instances_of.size(); ++geometry) {
             const std::size_t count = gl.instances_of[geometry].size();
@@ -486,8 +480,7 @@ ItemBufferResult ItemBuffer::draw(const World& world, bool flat_preview) {
 }
 
 ItemBufferResult ItemBuffer::draw_triangle_for_test(const World& world, const Vec3 (&corners)[3],
-                                                    std::uint32_t object_id,
-                                                    std::uint32_t primitive_base) {
+                                                    std::uint32_t object_id) {
     Impl& gl = *impl_;
     const PinholeCamera& camera = world.camera();
     const float near = near_plane(world);
@@ -500,7 +493,6 @@ ItemBufferResult ItemBuffer::draw_triangle_for_test(const World& world, const Ve
     glUniform1i(glGetUniformLocation(gl.mesh_program, "full_screen"), 0);
     glUniform1i(glGetUniformLocation(gl.mesh_program, "instanced"), 0);
     glUniform1ui(glGetUniformLocation(gl.mesh_program, "object_id"), object_id);
-    glUniform1ui(glGetUniformLocation(gl.mesh_program, "primitive_base"), primitive_base);
     glBindVertexArray(gl.geometries[geometry].vao);
     glDrawElements(GL_TRIANGLES, 3, GL_UNSIGNED_INT, nullptr);
     glBindVertexArray(0);

@@ -1,6 +1,8 @@
 // The item buffer (Ray Tracing III's last speed-up): every object drawn with its id into a
-// GL_RG32UI image (object index + 1, primitive index) with a 32-bit float reverse-Z depth, from
-// exactly the tracer's pinhole camera, then read back as an IdImage for trace/ to resolve.
+// GL_R32UI image (object index + 1) with a 32-bit float reverse-Z depth, from exactly the
+// tracer's pinhole camera, then read back as an IdImage for trace/ to resolve. Which triangle of
+// a tessellation was drawn is not kept: the resolve intersects the named object exactly, and a
+// mesh's own triangle comes with that hit (Hit::primitive).
 #pragma once
 
 #include "trace/image.h"
@@ -23,7 +25,6 @@ template <> struct EnumNames<RasterMode> {
 
 struct ItemBufferResult {
     IdImage ids;
-    std::vector<std::uint32_t> primitives; // per pixel: triangle index within the drawn mesh
     Image flat; // with draw(world, true): each object's diffuse colour, flat-shaded by facet
 };
 
@@ -46,10 +47,10 @@ class ItemBuffer {
     // Per object, in world units: how far what was drawn may lie from the true surface.
     const std::vector<float>& deviations() const { return deviations_; }
 
-    // Draws one triangle (camera-relative positions) with the given ids, for tests of the
-    // id round trip beyond 2^24.
+    // Draws one triangle (camera-relative positions) with the given id, for tests of the id
+    // round trip beyond 2^24.
     ItemBufferResult draw_triangle_for_test(const World& world, const Vec3 (&corners)[3],
-                                            std::uint32_t object_id, std::uint32_t primitive_base);
+                                            std::uint32_t object_id);
 
   private:
     struct Impl;

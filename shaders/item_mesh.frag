@@ -1,16 +1,15 @@
 #version 330 core
-// Mesh mode: the rasterized (tessellated or given) triangle's object and triangle index, and for
-// the interactive preview a flat-shaded colour (diffuse dimmed by the facet's angle to the eye).
-uniform uint primitive_base; // added to gl_PrimitiveID, for meshes drawn in parts
-uniform bool flat_preview;   // write `colour` too (a second draw buffer is bound)
+// Mesh mode: the rasterized (tessellated or given) triangle's object, and for the interactive
+// preview a flat-shaded colour (diffuse dimmed by the facet's angle to the eye).
+uniform bool flat_preview; // write `colour` too (a second draw buffer is bound)
 in vec3 view_position;
 flat in uint item_object_id; // object index + 1 (item.vert: uniform or instance attribute)
 flat in vec3 item_diffuse;
-layout(location = 0) out uvec2 item;
+layout(location = 0) out uint item;
 layout(location = 1) out vec4 colour;
 
 void main() {
-    item = uvec2(item_object_id, primitive_base + uint(gl_PrimitiveID));
+    item = item_object_id;
     if (flat_preview) {
         vec3 facet = cross(dFdx(view_position), dFdy(view_position));
         vec3 n = length(facet) > 0.0 ? normalize(facet) : vec3(0.0);

@@ -14,7 +14,7 @@ uniform vec2 viewport;
 uniform float near;
 uniform bool flat_preview; // write `colour` too, as item_mesh.frag does
 uniform vec3 diffuse;
-layout(location = 0) out uvec2 item;
+layout(location = 0) out uint item;
 layout(location = 1) out vec4 colour;
 
 const float kInfinity = 1.0 / 0.0;
@@ -93,5 +93,5 @@ void main() {
     }
     if (t == kInfinity) discard;
     gl_FragDepth = near / (t * dot(d, forward)); // reverse-Z: near / view depth
-    item = uvec2(object_id, 0u);
+    item = object_id;
 }

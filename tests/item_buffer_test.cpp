@@ -57,18 +57,17 @@ TEST_P(GlTest, ItemBufferCameraMatchesTheTracerCamera) {
 }
 
 TEST_P(GlTest, IdsBeyond2To24SurviveTheRoundTrip) {
-    // Float colour channels would round these; RG32UI must not.
+    // Float colour channels would round these; R32UI must not.
     const World world(parse_scene(
         R"({"camera": {"eye": [0, 0, 0], "look_at": [0, 0, -1], "width": 9, "height": 7}})",
         "ids.json"));
     const auto context = make_context(GetParam());
     ItemBuffer items;
     const Vec3 corners[3] = {{-50, -50, -5}, {50, -50, -5}, {0, 50, -5}};
-    const std::uint32_t object = (1u << 24) + 3, primitive = (1u << 24) + 5;
-    const ItemBufferResult r = items.draw_triangle_for_test(world, corners, object, primitive);
+    const std::uint32_t object = (1u << 24) + 3;
+    const ItemBufferResult r = items.draw_triangle_for_test(world, corners, object);
     const std::size_t centre = 3 * 9 + 4;
     EXPECT_EQ(r.ids.ids[centre], object);
-    EXPECT_EQ(r.primitives[centre], primitive);
     EXPECT_NEAR(r.ids.view_depth[centre], 5.0f, 5e-5f);
 }
 
