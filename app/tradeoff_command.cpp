@@ -158,7 +158,9 @@ Image enlarge(const Image& small, int width, int height) {
 }
 
 // One render of `scene` with `s`; the images are deterministic, so only times differ per repeat.
-Run render_once(const Scene& scene, const Setting& s, const TradeoffArgs& args) {
+// `geometry`: the scene's meshes and materials, prepared once for the whole sweep.
+Run render_once(const Scene& scene, const Setting& s, const TradeoffArgs& args,
+                const std::shared_ptr<const SceneGeometry>& geometry) {
     Scene copy = scene;
     copy.render = {s.max_depth, s.min_reflectivity};
     copy.camera.width = std::max(1, scene.camera.width / s.divisor);
@@ -168,7 +170,7 @@ Run render_once(const Scene& scene, const Setting& s, const TradeoffArgs& args) 
     FrameSettings settings = s.frame;
     settings.gl = *from_name<GlBackend>(args.gl); // checked by --gl
     settings.threads = args.threads;
-    run.frame = render_frame(copy, s.accel, settings);
+    run.frame = render_frame(copy, s.accel, settings, nullptr, geometry);
     run.bound = cutoff_bound(copy, run.frame.result);
     Image& image = run.frame.result.image;
     image = enlarge(image, scene.camera.width, scene.camera.height);
@@ -176,9 +178,10 @@ Run render_once(const Scene& scene, const Setting& s, const TradeoffArgs& args) 
 }
 
 // `repeat` renders side by side; keeps the one with the median frame time.
-Run measure(const Scene& scene, const Setting& s, const TradeoffArgs& args) {
+Run measure(const Scene& scene, const Setting& s, const TradeoffArgs& args,
+            const std::shared_ptr<const SceneGeometry>& geometry) {
     std::vector<Run> runs;
-    for (int i = 0; i < args.repeat; ++i) runs.push_back(render_once(scene, s, args));
+    for (int i = 0; i < args.repeat; ++i) runs.push_back(render_once(scene, s, args, geometry));
     std::sort(runs.begin(), runs.end(),
               [](const Run& a, const Run& b) { return a.frame_seconds() < b.frame_seconds(); });
     return std::move(runs[runs.size() / 2]);
@@ -341,9 +344,10 @@ std::string markdown(const std::vector<SceneResult>& results, const TradeoffArgs
        << kMaxDepth
        << " with no weight cut-off. **Error**: PSNR over every 8-bit channel (identical images: "
           "*exact*), largest channel difference, pixels off by more than 1/255. **Frame time**: "
-          "everything but the one-time GL set-up (context and shader compilation, ~0.2 s on "
-          "llvmpipe, reported in the CSV): preparing the world (transforms, acceleration "
-          "structure), tessellation upload, item buffer, primary visibility, shading. Each knob "
+          "everything but the one-time set-up (GL context and shader compilation, ~0.2 s on "
+          "llvmpipe, reported in the CSV; the meshes and their BVHs, prepared once per scene): "
+          "preparing the world (transforms, the top-level acceleration structure), tessellation "
+          "upload, item buffer, primary visibility, shading. Each knob "
           "is varied alone from the default setting (hybrid, mesh, tessellation 32, exact "
           "resolve, the scene's depth and cut-off, automatic structure); the trace-only knobs in "
           "ray mode. Smaller sizes are enlarged by pixel replication before comparing. "
@@ -451,6 +455,7 @@ int run_tradeoff(const TradeoffArgs& args) {
         const Image untruncated_float = render_frame(deep, std::nullopt, exact).result.image;
 
         const auto settings = sweep(scene);
+        const auto geometry = std::make_shared<const SceneGeometry>(scene);
         std::map<std::string, std::size_t> seen;
         std::printf("%s (%dx%d): %zu settings\n", sr.name.c_str(), scene.camera.width,
                     scene.camera.height, settings.size());
@@ -460,7 +465,7 @@ int run_tradeoff(const TradeoffArgs& args) {
                 sr.runs[it->second].knobs += "+" + knob;
                 continue;
             }
-            Run run = measure(scene, setting, args);
+            Run run = measure(scene, setting, args, geometry);
             run.knobs = knob;
             run.label = label;
             const RenderResult& result = run.frame.result;

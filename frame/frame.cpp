@@ -34,7 +34,8 @@ Frame render_frame(const World& world, const FrameSettings& settings,
 }
 
 Frame render_frame(const Scene& scene, std::optional<AccelKind> accel,
-                   const FrameSettings& settings, std::atomic<int>* tiles_done) {
+                   const FrameSettings& settings, std::atomic<int>* tiles_done,
+                   const std::shared_ptr<const SceneGeometry>& geometry) {
     if (settings.precision == Precision::f64) {
         if (settings.mode != Mode::ray)
             throw std::invalid_argument("double precision renders in ray mode only");
@@ -44,7 +45,9 @@ Frame render_frame(const Scene& scene, std::optional<AccelKind> accel,
         return frame;
     }
     double prepare = 0;
-    const World world = timed(prepare, [&] { return World(scene, accel); });
+    const World world = timed(prepare, [&] {
+        return geometry ? World(scene, geometry, accel) : World(scene, accel);
+    });
     Frame frame = render_frame(world, settings, tiles_done);
     frame.times.prepare = prepare;
     return frame;

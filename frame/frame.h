@@ -45,9 +45,11 @@ Frame render_frame(const World& world, const FrameSettings& settings,
                    std::atomic<int>* tiles_done = nullptr);
 
 // From a scene: prepares the World in settings.precision (timed as times.prepare), then renders.
-// Double precision is the reference tracer and traces rays only: hybrid mode with it throws
-// std::invalid_argument.
+// `geometry`, when given, is the scene's already prepared (float precision; a sweep over one
+// scene prepares its meshes once). Double precision is the reference tracer and traces rays
+// only: hybrid mode with it throws std::invalid_argument.
 Frame render_frame(const Scene& scene, std::optional<AccelKind> accel,
-                   const FrameSettings& settings, std::atomic<int>* tiles_done = nullptr);
+                   const FrameSettings& settings, std::atomic<int>* tiles_done = nullptr,
+                   const std::shared_ptr<const SceneGeometry>& geometry = nullptr);
 
 } // namespace glint

@@ -63,6 +63,30 @@ TEST(Render, APixelTracedAloneIsThePixelOfTheFrame) {
     EXPECT_EQ(total.reflection, frame.rays.reflection);
 }
 
+// A camera move (docs/PREVIEW.md): the World for the new camera shares the old one's meshes
+// and refits its structure, and renders exactly what a World made afresh for that camera does,
+// for every structure, on every shipped scene (instances.json places OBJ meshes).
+TEST(Render, AWorldForAMovedCameraRendersWhatAFreshWorldDoes) {
+    for (const char* name : testing::kShippedScenes) {
+        for (const AccelKind kind : {AccelKind::list, AccelKind::bvh, AccelKind::spheres,
+                                     AccelKind::grid, AccelKind::kd}) {
+            Scene scene = testing::shipped(name, 64, 48);
+            const World before(scene, kind);
+            scene.camera.eye = scene.camera.eye * 1.3 + DVec3(0.7, 0.4, -0.2);
+            scene.camera.width = 72, scene.camera.height = 40;
+            scene.render.max_depth = 3;
+            const World moved(scene, before);
+            const World fresh(scene, kind);
+            EXPECT_EQ(moved.accelerator().kind(), kind);
+            EXPECT_EQ(render(moved).image.rgb, render(fresh).image.rgb) << name << ", "
+                                                                        << name_of(kind);
+            if (!scene.meshes.empty()) {
+                EXPECT_EQ(&moved.mesh(0), &before.mesh(0)) << name << ": a mesh was prepared again";
+            }
+        }
+    }
+}
+
 TEST(Render, ProgressCountsEveryTile) {
     const World world(default_scene(100, 70));
     std::atomic<int> done{0};

@@ -23,14 +23,20 @@ Bounds world_bounds(const std::pair<DVec3, DVec3>& local, const DMat4& m) {
 
 } // namespace
 
-World::World(const Scene& scene, std::optional<AccelKind> accel)
-    : camera_(scene.camera), background_(scene.background), ambient_(scene.ambient),
-      settings_(scene.render) {
+SceneGeometry::SceneGeometry(const Scene& scene) {
     for (const Material& m : scene.materials)
-        materials_.push_back(
+        materials.push_back(
             {Vec3(m.ambient), Vec3(m.diffuse), Vec3(m.specular), m.shininess, m.reflectivity});
+    const Stopwatch watch;
+    for (const TriangleMesh& mesh : scene.meshes) meshes.push_back(prepare_mesh(mesh));
+    build_seconds = watch.seconds();
+}
+
+World::World(const Scene& scene, std::shared_ptr<const SceneGeometry> geometry, CameraRelative)
+    : geometry_(std::move(geometry)), camera_(scene.camera), background_(scene.background),
+      ambient_(scene.ambient), settings_(scene.render) {
     // Camera-relative coordinates, composed in double: precision follows the scene's size, not
-    // its distance from the world origin (DESIGN.md §2).
+    // its distance from the world origin (docs/ARCHITECTURE.md, "Precision").
     const DMat4 to_camera = translation_matrix(-scene.camera.eye);
     objects_.reserve(scene.objects.size());
     for (const SceneObject& o : scene.objects) {
@@ -42,21 +48,36 @@ World::World(const Scene& scene, std::optional<AccelKind> accel)
     }
     for (const PointLight& light : scene.lights)
         lights_.push_back({Vec3(light.position - scene.camera.eye), Vec3(light.color)});
+    for (std::uint32_t i = 0; i < objects_.size(); ++i)
+        (objects_[i].bounded ? bounded_ : unbounded_).push_back(i);
+}
 
+std::vector<Bounds> World::item_bounds() const {
+    std::vector<Bounds> boxes;
+    boxes.reserve(bounded_.size());
+    for (const std::uint32_t object : bounded_) boxes.push_back(objects_[object].bounds);
+    return boxes;
+}
+
+World::World(const Scene& scene, std::optional<AccelKind> accel)
+    : World(scene, std::make_shared<const SceneGeometry>(scene), accel) {
+    build_seconds_ += geometry_->build_seconds;
+}
+
+World::World(const Scene& scene, std::shared_ptr<const SceneGeometry> geometry,
+             std::optional<AccelKind> accel)
+    : World(scene, std::move(geometry), CameraRelative{}) {
     const Stopwatch watch;
-    for (const TriangleMesh& mesh : scene.meshes) meshes_.push_back(prepare_mesh(mesh));
-    std::vector<Bounds> item_bounds;
-    for (std::uint32_t i = 0; i < objects_.size(); ++i) {
-        if (!objects_[i].bounded) {
-            unbounded_.push_back(i);
-            continue;
-        }
-        bounded_.push_back(i);
-        item_bounds.push_back(objects_[i].bounds);
-    }
     const AccelKind kind =
         accel.value_or(bounded_.size() < kListBelow ? AccelKind::list : AccelKind::bvh);
-    accel_ = Accelerator(kind, std::move(item_bounds));
+    accel_ = Accelerator(kind, item_bounds());
+    build_seconds_ = watch.seconds();
+}
+
+World::World(const Scene& scene, const World& previous)
+    : World(scene, previous.geometry_, CameraRelative{}) {
+    const Stopwatch watch;
+    accel_ = previous.accel_.refitted(item_bounds());
     build_seconds_ = watch.seconds();
 }
 
@@ -97,7 +118,7 @@ ShapeHit World::intersect_shape(const Object& object, const Ray& world_ray, Real
         return intersect_cone(ray, object.top_radius, t_max, object.open);
     case ShapeKind::triangle:
     case ShapeKind::mesh:
-        return intersect_mesh(meshes_[object.mesh], ray, t_max, counters);
+        return intersect_mesh(geometry_->meshes[object.mesh], ray, t_max, counters);
     }
     return {};
 }
@@ -199,7 +220,7 @@ SurfacePoint World::surface(const Ray& ray, const Hit& hit) const {
         break;
     case ShapeKind::triangle:
     case ShapeKind::mesh:
-        s = mesh_surface(meshes_[object.mesh], hit.primitive, hit.u, hit.v);
+        s = mesh_surface(geometry_->meshes[object.mesh], hit.primitive, hit.u, hit.v);
         break;
     }
     Vec3 normal = m.normal_to_world(s.normal);

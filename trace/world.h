@@ -11,6 +11,7 @@
 
 #include <tbb/enumerable_thread_specific.h>
 
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -70,10 +71,30 @@ class LazySlab {
 // structure is then the plain list (model only what the scene needs).
 inline constexpr std::size_t kListBelow = 16;
 
+// What the camera does not change: the meshes with their BVHs (object space) and the materials.
+// Built once per scene and shared by every World of it (a preview's camera moves, a tradeoff
+// sweep's settings).
+struct SceneGeometry {
+    explicit SceneGeometry(const Scene& scene);
+
+    std::vector<Mesh> meshes;
+    std::vector<Phong> materials;
+    double build_seconds = 0; // the meshes' BVHs
+};
+
 class World {
   public:
     // `accel`: the acceleration structure; by default list below kListBelow objects, else bvh.
     explicit World(const Scene& scene, std::optional<AccelKind> accel = std::nullopt);
+    // The same with the scene's geometry prepared already (SceneGeometry(scene), or `geometry()`
+    // of a World of the same scene).
+    World(const Scene& scene, std::shared_ptr<const SceneGeometry> geometry,
+          std::optional<AccelKind> accel);
+    // The same scene with another camera, size or render settings (`scene` must differ from
+    // `previous`'s in nothing else): shares `previous`'s geometry, so no mesh is prepared again,
+    // and keeps its structure's kind. A BVH or list is refitted to the moved boxes rather than
+    // built anew; every structure returns the list's hits, so the image is the same either way.
+    World(const Scene& scene, const World& previous);
 
     // The closest hit in (0, t_max) on any object but `skip`; ties go to the lower index.
     Hit intersect(const Ray& ray, Real t_max = kInfinity, std::uint32_t skip = kNoObject) const;
@@ -85,14 +106,15 @@ class World {
 
     const PinholeCamera& camera() const { return camera_; }
     const std::vector<Object>& objects() const { return objects_; }
-    const Mesh& mesh(std::uint32_t index) const { return meshes_[index]; }
+    const Mesh& mesh(std::uint32_t index) const { return geometry_->meshes[index]; }
     const std::vector<Light>& lights() const { return lights_; }
     const Phong& material(std::uint32_t object) const {
-        return materials_[objects_[object].material];
+        return geometry_->materials[objects_[object].material];
     }
     Vec3 background() const { return background_; }
     Vec3 ambient() const { return ambient_; }
     const RenderSettings& settings() const { return settings_; }
+    const std::shared_ptr<const SceneGeometry>& geometry() const { return geometry_; }
     const Accelerator& accelerator() const { return accel_; }
     double build_seconds() const {
         return build_seconds_;
@@ -117,10 +139,15 @@ class World {
     template <class Counters>
     bool any(const Ray& ray, Real t_max, std::uint32_t skip, Counters& counters) const;
 
+    // The camera-relative part: objects, lights and bounds; the structure is the caller's.
+    struct CameraRelative {};
+    World(const Scene& scene, std::shared_ptr<const SceneGeometry> geometry, CameraRelative);
+    // The bounded objects' boxes, in item order (bounded_), for the top-level structure.
+    std::vector<Bounds> item_bounds() const;
+
+    std::shared_ptr<const SceneGeometry> geometry_;
     PinholeCamera camera_;
     std::vector<Object> objects_;
-    std::vector<Mesh> meshes_;
-    std::vector<Phong> materials_;
     std::vector<Light> lights_;
     Vec3 background_, ambient_;
     RenderSettings settings_;

@@ -23,6 +23,15 @@ Accelerator::Accelerator(AccelKind kind, std::vector<Bounds> items) {
     }
 }
 
+Accelerator Accelerator::refitted(std::vector<Bounds> items) const {
+    if (const Bvh* bvh = std::get_if<Bvh>(&structure_)) {
+        Accelerator moved;
+        moved.structure_.emplace<Bvh>(bvh->refitted(items));
+        return moved;
+    }
+    return Accelerator(kind(), std::move(items));
+}
+
 std::size_t Accelerator::memory_bytes() const {
     return std::visit([](const auto& s) { return s.memory_bytes(); }, structure_);
 }

@@ -44,6 +44,10 @@ class Accelerator {
     // Builds the structure over the items' world-space bounds.
     Accelerator(AccelKind kind, std::vector<Bounds> items);
 
+    // The same kind over the same items with new bounds (the camera moved): a BVH keeps its
+    // tree and refits its boxes, a list takes the new boxes, the others are built again.
+    Accelerator refitted(std::vector<Bounds> items) const;
+
     AccelKind kind() const { return static_cast<AccelKind>(structure_.index()); }
     std::size_t memory_bytes() const;
     std::size_t node_count() const;

@@ -126,7 +126,29 @@ struct Builder {
     }
 };
 
+// The box of node `index` over `items`, refitted below it first.
+Bounds refit(std::vector<BvhNode>& nodes, const std::vector<std::uint32_t>& order,
+             std::span<const Bounds> items, std::uint32_t index) {
+    BvhNode& node = nodes[index];
+    Bounds box;
+    if (node.count > 0) {
+        for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
+            box.extend(items[order[i]]);
+    } else {
+        box.extend(refit(nodes, order, items, node.first));
+        box.extend(refit(nodes, order, items, node.first + 1));
+    }
+    node.bounds = box;
+    return box;
+}
+
 } // namespace
+
+Bvh Bvh::refitted(std::span<const Bounds> items) const {
+    Bvh moved = *this;
+    if (!moved.nodes_.empty()) refit(moved.nodes_, moved.items_, items, 0);
+    return moved;
+}
 
 Bvh::Bvh(std::span<const Bounds> item_bounds) {
     if (item_bounds.empty()) return;

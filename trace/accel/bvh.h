@@ -31,6 +31,10 @@ class Bvh {
     Bvh() = default;
     explicit Bvh(std::span<const Bounds> items);
 
+    // This tree over new boxes of the same items: each node's box the union of its items' or
+    // children's. Conservative as a fresh build is; only the SAH's choice of splits may be worse.
+    Bvh refitted(std::span<const Bounds> items) const;
+
     const std::vector<BvhNode>& nodes() const { return nodes_; }
     const std::vector<std::uint32_t>& items() const { return items_; }
     std::size_t memory_bytes() const { return nodes_.size() * sizeof(BvhNode) + items_.size() * 4; }
