@@ -9,7 +9,9 @@
 #include <shaders.h>
 
 #include <algorithm>
+#include <cctype>
 #include <map>
+#include <string>
 #include <tuple>
 
 namespace glint {
@@ -29,6 +31,21 @@ GLuint compile(GLenum kind, const char* source) {
         throw GlError(std::string("shader compilation failed: ") + log);
     }
     return shader;
+}
+
+// GLSL constants for the closed set of shapes, from its one table (trace/scene.h), inserted after
+// a shader's #version line: `const int SHAPE_SPHERE = 0;` and so on. A shader naming a shape
+// that the table lacks fails to compile.
+std::string with_shape_constants(std::string_view source) {
+    std::string constants;
+    const auto& names = EnumNames<ShapeKind>::names;
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        std::string name(names[i]);
+        for (char& c : name) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+        constants += "const int SHAPE_" + name + " = " + std::to_string(i) + ";\n";
+    }
+    const std::size_t line_end = source.find('\n') + 1;
+    return std::string(source.substr(0, line_end)) + constants + std::string(source.substr(line_end));
 }
 
 GLuint link(const char* vertex, const char* fragment) {
@@ -289,7 +306,8 @@ struct ItemBuffer::Impl {
 ItemBuffer::ItemBuffer() : impl_(std::make_unique<Impl>()) {
     Impl& gl = *impl_;
     gl.mesh_program = link(shaders::kItemVert, shaders::kItemMeshFrag);
-    gl.proxy_program = link(shaders::kItemVert, shaders::kItemProxyFrag);
+    gl.proxy_program =
+        link(shaders::kItemVert, with_shape_constants(shaders::kItemProxyFrag).c_str());
     glGenVertexArrays(1, &gl.empty_vao); // core profile draws need a VAO even with no attributes
     // llvmpipe compiles a program's machine code at its first draw (~0.1–0.2 s): draw each once
     // into a 1×1 target now, so that this cost counts as shader compilation, not as a frame.

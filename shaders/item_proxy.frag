@@ -3,7 +3,7 @@
 // object space, intersected exactly with the unit primitive; misses are discarded and the depth
 // written is the true hit's, so ids carry no tessellation error. Same conventions as trace/.
 uniform uint object_id;
-uniform int shape; // ShapeKind: 0 sphere, 1 plane, 2 box, 3 disk, 4 cylinder, 5 cone
+uniform int shape; // ShapeKind, as the SHAPE_ constants the C++ side inserts above (item_buffer.cpp)
 uniform float top_radius;
 uniform bool open; // cylinders and cones without caps
 uniform mat4 world_to_object; // camera-relative world → object (M⁻¹)
@@ -75,15 +75,16 @@ void main() {
     vec3 o = world_to_object[3].xyz; // the eye is the camera-relative origin
     vec3 dl = mat3(world_to_object) * d;
     float t = kInfinity;
-    if (shape == 0) t = sphere(o, dl);
-    else if (shape == 1) t = plane(o, dl);
-    else if (shape == 2) t = box(o, dl);
-    else if (shape == 3) t = disk(o, dl, 1.0, 0.0);
-    else {
-        float k = shape == 4 ? 0.0 : 1.0 - top_radius;
+    if (shape == SHAPE_SPHERE) t = sphere(o, dl);
+    else if (shape == SHAPE_PLANE) t = plane(o, dl);
+    else if (shape == SHAPE_BOX) t = box(o, dl);
+    else if (shape == SHAPE_DISK) t = disk(o, dl, 1.0, 0.0);
+    else if (shape == SHAPE_CYLINDER || shape == SHAPE_CONE) {
+        float k = shape == SHAPE_CYLINDER ? 0.0 : 1.0 - top_radius;
         t = side(o, dl, k);
         if (!open) t = min(t, disk(o, dl, 1.0, 0.0));
-        if (!open && (shape == 4 || top_radius > 0.0)) t = min(t, disk(o, dl, 1.0 - k, 1.0));
+        if (!open && (shape == SHAPE_CYLINDER || top_radius > 0.0))
+            t = min(t, disk(o, dl, 1.0 - k, 1.0));
     }
     if (flat_preview) { // derivatives before the discard, over the whole 2×2 quad
         vec3 p = t < kInfinity ? t * d : vec3(0.0);
