@@ -21,8 +21,7 @@ Command add_info_command(CLI::App& app) {
                 for (const GlBackend backend : {GlBackend::osmesa, GlBackend::egl}) {
                     try {
                         const auto context = make_context(backend);
-                        std::printf("OpenGL (%s): %s, %s\n",
-                                    std::string(name_of(backend)).c_str(),
+                        std::printf("OpenGL (%s): %s, %s\n", std::string(name_of(backend)).c_str(),
                                     context->renderer().c_str(), context->version().c_str());
                     } catch (const GlError& e) {
                         std::printf("OpenGL (%s): unavailable: %s\n",

@@ -305,17 +305,14 @@ void write_csv(const std::vector<SceneResult>& results, const fs::path& path) {
             const RayCounts& rays = r.frame.result.rays;
             const bool hybrid = f.mode == Mode::hybrid;
             csv << sr.name << ',' << sr.scene.camera.width << ',' << sr.scene.camera.height << ','
-                << r.knobs << ",\"" << r.label << "\","
-                << name_of(f.precision) << ',' << name_of(f.mode) << ','
-                << (hybrid ? name_of(f.raster) : "")
-                << ','
+                << r.knobs << ",\"" << r.label << "\"," << name_of(f.precision) << ','
+                << name_of(f.mode) << ',' << (hybrid ? name_of(f.raster) : "") << ','
                 << (hybrid && f.raster == RasterMode::mesh ? std::to_string(f.tessellation) : "")
-                << ',' << (hybrid ? name_of(f.resolve) : "") << ','
-                << s.max_depth << ',' << s.min_reflectivity << ','
-                << (s.accel ? name_of(*s.accel) : "auto") << ',' << s.divisor << ','
-                << r.frame_seconds() << ',' << r.total_seconds() << ',' << t.prepare << ','
-                << t.context << ',' << t.compile << ',' << t.upload << ',' << t.raster << ','
-                << t.primary << ',' << t.shading << ','
+                << ',' << (hybrid ? name_of(f.resolve) : "") << ',' << s.max_depth << ','
+                << s.min_reflectivity << ',' << (s.accel ? name_of(*s.accel) : "auto") << ','
+                << s.divisor << ',' << r.frame_seconds() << ',' << r.total_seconds() << ','
+                << t.prepare << ',' << t.context << ',' << t.compile << ',' << t.upload << ','
+                << t.raster << ',' << t.primary << ',' << t.shading << ','
                 << (std::isinf(r.diff.psnr_db) ? "inf" : format("%.3f", r.diff.psnr_db)) << ','
                 << r.diff.max_abs_error << ',' << r.diff.fraction_over_one << ','
                 << (r.agreement ? format("%.6f", *r.agreement) : "") << ',' << rays.primary << ','
@@ -386,8 +383,8 @@ std::string markdown(const std::vector<SceneResult>& results, const TradeoffArgs
             md << "| " << r.knobs << " | " << r.label << " | " << format("%.4f", r.frame_seconds())
                << " | " << psnr_text(r.diff.psnr_db) << " | " << r.diff.max_abs_error << " | "
                << format("%.3f%%", 100 * r.diff.fraction_over_one) << " | "
-               << (r.agreement ? format("%.4f", *r.agreement) : "–") << " | " << r.frame.result.rays.reflection
-               << " | " << r.bound.max << "/255"
+               << (r.agreement ? format("%.4f", *r.agreement) : "–") << " | "
+               << r.frame.result.rays.reflection << " | " << r.bound.max << "/255"
                << (r.bound_held ? (*r.bound_held ? ", held" : ", **violated**") : "") << " |\n";
         md << "\n</details>\n\n";
     }
@@ -486,8 +483,7 @@ int run_tradeoff(const TradeoffArgs& args) {
         plot(sr.name, sr.runs, out);
     }
     write_csv(results, out / "tradeoff.csv");
-    write_file_atomically(summary,
-                          markdown(results, args, plots, gl_renderer, watch.seconds()));
+    write_file_atomically(summary, markdown(results, args, plots, gl_renderer, watch.seconds()));
     std::printf("wrote %s, %s and a plot per scene (SVG, PNG) in %s, in %.0f s\n",
                 (out / "tradeoff.csv").c_str(), summary.c_str(), out.c_str(), watch.seconds());
     return 0;

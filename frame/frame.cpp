@@ -45,9 +45,8 @@ Frame render_frame(const Scene& scene, std::optional<AccelKind> accel,
         return frame;
     }
     double prepare = 0;
-    const World world = timed(prepare, [&] {
-        return geometry ? World(scene, geometry, accel) : World(scene, accel);
-    });
+    const World world = timed(
+        prepare, [&] { return geometry ? World(scene, geometry, accel) : World(scene, accel); });
     Frame frame = render_frame(world, settings, tiles_done);
     frame.times.prepare = prepare;
     return frame;

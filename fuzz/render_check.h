@@ -46,7 +46,8 @@ int check_loader(const std::uint8_t* data, std::size_t size, const std::string& 
                 first = image;
             } else if (image.rgb != first.rgb) {
                 std::fprintf(stderr, "%s renders a different image from %s\n",
-                             std::string(accel).c_str(), std::string(EnumNames<AccelKind>::names[0]).c_str());
+                             std::string(accel).c_str(),
+                             std::string(EnumNames<AccelKind>::names[0]).c_str());
                 std::abort();
             }
         }

@@ -112,7 +112,7 @@ class Preview {
     double cursor_x_ = 0, cursor_y_ = 0;
     bool screenshot_requested_ = false;
     int screenshots_ = 0;
-    Stopwatch title_watch_; // since the title last changed (restart() sets it first)
+    Stopwatch title_watch_;              // since the title last changed (restart() sets it first)
     std::shared_ptr<const World> world_; // of the current camera
     std::string title_;
     FrameLog log_;

@@ -75,11 +75,9 @@ void RefineJob::trace_tile(const TileRect& rect) {
             const Rgb depth =
                 reflection_colour(static_cast<int>(sample.rays.reflection), max_depth);
             std::copy(depth.begin(), depth.end(), reflections_.pixel(x, y));
-            const Rgb normal =
-                hit.found() ? normal_colour(glm::vec3(sample.normal)) : Rgb{0, 0, 0};
+            const Rgb normal = hit.found() ? normal_colour(glm::vec3(sample.normal)) : Rgb{0, 0, 0};
             std::copy(normal.begin(), normal.end(), normals_.pixel(x, y));
-            const Hit by_ray =
-                compare_with_ray_ ? world.intersect(world.camera().ray(x, y)) : hit;
+            const Hit by_ray = compare_with_ray_ ? world.intersect(world.camera().ray(x, y)) : hit;
             const bool differs =
                 by_ray.found() != hit.found() || (hit.found() && by_ray.object != hit.object);
             differing += differs;

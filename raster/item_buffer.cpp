@@ -45,7 +45,8 @@ std::string with_shape_constants(std::string_view source) {
         constants += "const int SHAPE_" + name + " = " + std::to_string(i) + ";\n";
     }
     const std::size_t line_end = source.find('\n') + 1;
-    return std::string(source.substr(0, line_end)) + constants + std::string(source.substr(line_end));
+    return std::string(source.substr(0, line_end)) + constants +
+           std::string(source.substr(line_end));
 }
 
 GLuint link(const char* vertex, const char* fragment) {
@@ -395,8 +396,8 @@ namespace {
 // Near plane: 1e-24 of the scene's extent. Reverse-Z float depth (near / view depth) keeps its
 // relative precision at every distance, so the near plane costs nothing by being close: it only
 // has to keep the farthest depth, near / extent, a normal float (≥ 1.2e-38). Objects nearer than
-// it to the eye are clipped; at a millionth of the extent (the old choice) a sphere one unit from
-// the eye in a scene 1e6 across lost the rim of its silhouette, and exact resolve could not
+// it to the eye are clipped; at a millionth of the extent a sphere one unit from the eye in a
+// scene 1e6 across would lose the rim of its silhouette, and exact resolve could not
 // recover pixels the id buffer never named it in (GlStability.ReverseZ…).
 float near_plane(const World& world) {
     float extent = 1.0f;

@@ -233,8 +233,7 @@ TEST_P(GlTest, FlatPreviewShowsEachObjectsDiffuseColourFromTheSamePass) {
                 }
             }
         }
-        EXPECT_EQ(off, 0u) << "of " << checked << " channels, in " << name_of(mode)
-                           << " mode";
+        EXPECT_EQ(off, 0u) << "of " << checked << " channels, in " << name_of(mode) << " mode";
     }
 }
 

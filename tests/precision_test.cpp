@@ -82,8 +82,7 @@ TEST(Cutoff, TheBoundShrinksWithDepthBetweenFacingMirrors) {
     int previous = 256;
     for (const int depth : {0, 4, 16, 64}) {
         scene.render.max_depth = depth;
-        const CutoffBound bound =
-            cutoff_bound(scene, ray_render(scene));
+        const CutoffBound bound = cutoff_bound(scene, ray_render(scene));
         EXPECT_LE(bound.max, previous) << "max_depth " << depth;
         previous = bound.max;
     }
@@ -94,8 +93,7 @@ TEST(Cutoff, TheBoundShrinksWithDepthBetweenFacingMirrors) {
 TEST(Cutoff, ASceneWithoutMirrorsHasANullBound) {
     Scene scene = shipped("shadows", 80, 60);
     scene.render.max_depth = 0;
-    const CutoffBound bound =
-        cutoff_bound(scene, ray_render(scene));
+    const CutoffBound bound = cutoff_bound(scene, ray_render(scene));
     EXPECT_EQ(bound.max, 0);
     EXPECT_EQ(bound.largest_omitted_weight, 0.0);
 }

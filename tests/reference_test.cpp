@@ -1,4 +1,4 @@
-// An independent renderer, written from DESIGN.md §2's conventions alone: double precision,
+// An independent renderer, written from docs/ARCHITECTURE.md's conventions alone: double precision,
 // textbook formulas, no code shared with trace/ beyond the scene model. glint must produce the
 // same pixels (±2/255) on random scenes of spheres, planes and boxes under arbitrary affine
 // transforms with reflections and shadows, away from silhouettes and shadow edges.

@@ -78,8 +78,8 @@ TEST(Render, AWorldForAMovedCameraRendersWhatAFreshWorldDoes) {
             const World moved(scene, before);
             const World fresh(scene, kind);
             EXPECT_EQ(moved.accelerator().kind(), kind);
-            EXPECT_EQ(render(moved).image.rgb, render(fresh).image.rgb) << name << ", "
-                                                                        << name_of(kind);
+            EXPECT_EQ(render(moved).image.rgb, render(fresh).image.rgb)
+                << name << ", " << name_of(kind);
             if (!scene.meshes.empty()) {
                 EXPECT_EQ(&moved.mesh(0), &before.mesh(0)) << name << ": a mesh was prepared again";
             }

@@ -1,5 +1,6 @@
-// Shading exactly per DESIGN.md §2: hand-computed Phong pixels, hard shadows, and the two rules
-// that stop recursive reflection (max_depth, min_reflectivity on the path weight).
+// Shading exactly per docs/ARCHITECTURE.md's conventions: hand-computed Phong pixels, hard shadows,
+// and the two rules that stop recursive reflection (max_depth, min_reflectivity on the path
+// weight).
 #include "test_scenes.h"
 
 #include "trace/render.h"

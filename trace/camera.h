@@ -1,4 +1,5 @@
-// The pinhole camera of DESIGN.md §2, centred on the eye (world coordinates are camera-relative).
+// The pinhole camera of docs/ARCHITECTURE.md, "Conventions", centred on the eye (world coordinates
+// are camera-relative).
 #pragma once
 
 #include "trace/ray.h"

@@ -68,8 +68,8 @@ Hit resolve_pixel(const World& world, const IdImage& ids, Resolve resolve, int x
     return hit;
 }
 
-std::vector<Hit> primary_hits(const World& world, const PrimarySource& source,
-                              PrimaryStats& stats, const TileProgress& progress) {
+std::vector<Hit> primary_hits(const World& world, const PrimarySource& source, PrimaryStats& stats,
+                              const TileProgress& progress) {
     const PinholeCamera& camera = world.camera();
     const int width = camera.width();
     std::vector<Hit> hits(static_cast<std::size_t>(width) * camera.height());

@@ -1,7 +1,7 @@
-// Primary visibility (DESIGN.md §2, step 3): which object each pixel's camera ray hits first.
-// Two sources, one result: cast every camera ray, or start from an id image rasterized
-// elsewhere (the item buffer) and intersect each pixel's ray exactly with the object it names.
-// trace/ only sees the id image; how it was made is raster/'s business.
+// Primary visibility (docs/ARCHITECTURE.md, "A frame's journey", step 3): which object each pixel's
+// camera ray hits first. Two sources, one result: cast every camera ray, or start from an id image
+// rasterized elsewhere (the item buffer) and intersect each pixel's ray exactly with the object it
+// names. trace/ only sees the id image; how it was made is raster/'s business.
 #pragma once
 
 #include "trace/names.h"
@@ -61,12 +61,11 @@ inline Hit primary_hit(const World& world, const PrimarySource& source, int x, i
 }
 
 // Every pixel's primary hit from `source`, row-major, top row first.
-std::vector<Hit> primary_hits(const World& world, const PrimarySource& source,
-                              PrimaryStats& stats, const TileProgress& progress = {});
+std::vector<Hit> primary_hits(const World& world, const PrimarySource& source, PrimaryStats& stats,
+                              const TileProgress& progress = {});
 
 // Ray mode: every pixel's camera ray.
-inline std::vector<Hit> primary_hits_by_ray(const World& world,
-                                            const TileProgress& progress = {}) {
+inline std::vector<Hit> primary_hits_by_ray(const World& world, const TileProgress& progress = {}) {
     PrimaryStats unused;
     return primary_hits(world, {}, unused, progress);
 }

@@ -3,8 +3,8 @@
 #pragma once
 
 #include "trace/image_metrics.h"
-#include "trace/precision.h"
 #include "trace/pixel.h"
+#include "trace/precision.h"
 
 namespace glint {
 inline namespace GLINT_PRECISION {

@@ -1,4 +1,4 @@
-// The scene as loaded and validated (DESIGN.md §7): what the file says, in double positions and
+// The scene as loaded and validated (docs/SCENES.md): what the file says, in double positions and
 // transforms and float colours, the same for both precisions of the tracer (trace/math.h).
 // Everything after loading may assume it valid; World (trace/world.h) prepares it for tracing.
 #pragma once
@@ -24,7 +24,8 @@ using DMat4 = glm::dmat4;
 // finite in float (3.4e38) with room to spare.
 inline constexpr double kMaxCoordinate = 1e15;
 
-// The closed set of shapes (DESIGN.md §3). One switch in World dispatches on it.
+// The closed set of shapes (docs/ARCHITECTURE.md, "Conventions"; where each is handled: "Where to
+// add").
 enum class ShapeKind : std::uint8_t { sphere, plane, box, disk, cylinder, cone, triangle, mesh };
 
 template <> struct EnumNames<ShapeKind> {

@@ -330,11 +330,14 @@ class Loader {
     void object(const Node& node, Scene& scene) const {
         expect_object(node, {"shape", "material", "transform", "top_radius", "open", "vertices",
                              "indices", "file"});
-        if (!has(node, "shape")) fail(node, "an object needs a shape (" + join(EnumNames<ShapeKind>::names) + ")");
+        if (!has(node, "shape"))
+            fail(node, "an object needs a shape (" + join(EnumNames<ShapeKind>::names) + ")");
         const Node shape_node = node.child("shape");
         const std::string shape = string(shape_node);
-        const auto it = std::find(EnumNames<ShapeKind>::names.begin(), EnumNames<ShapeKind>::names.end(), shape);
-        if (it == EnumNames<ShapeKind>::names.end()) fail(shape_node, "unknown shape '" + shape + "'");
+        const auto it = std::find(EnumNames<ShapeKind>::names.begin(),
+                                  EnumNames<ShapeKind>::names.end(), shape);
+        if (it == EnumNames<ShapeKind>::names.end())
+            fail(shape_node, "unknown shape '" + shape + "'");
         SceneObject o;
         o.shape = static_cast<ShapeKind>(it - EnumNames<ShapeKind>::names.begin());
         const bool triangles = o.shape == ShapeKind::triangle || o.shape == ShapeKind::mesh;

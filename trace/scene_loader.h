@@ -1,4 +1,4 @@
-// Loads and validates JSON scenes (DESIGN.md §7; every field and default in docs/SCENES.md).
+// Loads and validates JSON scenes (every field and default in docs/SCENES.md).
 // Every error names the file and the JSON path (or, for malformed JSON, the line and column).
 #pragma once
 

@@ -45,7 +45,7 @@ struct SurfacePoint {
     Vec3 position;
     Vec3 normal;  // unit geometric normal, flipped to face the incoming ray
     Vec3 shading; // unit normal for shading: `normal`, or the mesh's smooth one on its side
-    Real offset; // distance along `normal` that clears the surface's rounding error (0 if skip)
+    Real offset;  // distance along `normal` that clears the surface's rounding error (0 if skip)
     // The object itself when no ray leaving here on the normal's side can meet it again (a
     // convex solid left from outside, or a planar shape): such rays ignore it and start on the
     // surface, so they need no offset. kNoObject otherwise (meshes, solids left from inside).

@@ -1,9 +1,9 @@
-// Acceleration structures (DESIGN.md §4; Ray Tracing III: extents and space division), all
-// behind one traversal: traverse(ray, t_max, counters, visit) calls visit(item, t_max) for the
-// items the ray may hit, nearest regions first where the structure knows them; the visitor tests
-// the item, may shorten t_max (closest hit) and returns true to stop (any hit). The kinds are a
-// closed set: one switch dispatches, and each traversal is a template, so the hot path has no
-// virtual call.
+// Acceleration structures (docs/ARCHITECTURE.md, "Conventions"; Ray Tracing III: extents and space
+// division), all behind one traversal: traverse(ray, t_max, counters, visit) calls visit(item,
+// t_max) for the items the ray may hit, nearest regions first where the structure knows them; the
+// visitor tests the item, may shorten t_max (closest hit) and returns true to stop (any hit). The
+// kinds are a closed set: one switch dispatches, and each traversal is a template, so the hot path
+// has no virtual call.
 #pragma once
 
 #include "trace/accel/accel_kind.h"

@@ -1,4 +1,5 @@
-// The acceleration structures by name (DESIGN.md §4), the same for both precisions.
+// The acceleration structures by name (docs/ARCHITECTURE.md, "Conventions"), the same for both
+// precisions.
 #pragma once
 
 #include "trace/names.h"
