@@ -37,30 +37,41 @@ Scene prepare(const CompareArgs& args) {
     return scene;
 }
 
-int run_compare(const CompareArgs& args) {
-    const Scene scene = prepare(args);
-    const World world(scene, args.scene.accel_kind());
+// Both modes' frames of one scene and what sets them apart.
+struct Comparison {
+    const Scene& scene;
+    const World& world;
+    Frame ray, hybrid;
+    ImageDifference diff;
+    double agreement;     // fraction of pixels whose primary hits name the same object
+    double primary_ratio; // primary visibility, hybrid / ray
+    double frame_ratio;   // the whole frame, hybrid / ray
+};
 
+Comparison compare(const CompareArgs& args, const Scene& scene, const World& world) {
     FrameSettings settings = args.frame.settings();
     settings.mode = Mode::ray;
-    const Frame ray = render_frame(world, settings);
+    Frame ray = render_frame(world, settings);
     settings.mode = Mode::hybrid;
-    const Frame hybrid = render_frame(world, settings);
-
+    Frame hybrid = render_frame(world, settings);
     const ImageDifference diff = compare_images(ray.result.image, hybrid.result.image);
     const double agreement = id_agreement(ray.result.ids, hybrid.result.ids);
-    const double pixels = static_cast<double>(ray.result.ids.size());
     // Per frame, the one-time set-up (context, shaders, upload) aside: what a preview pays again
     // for every frame. The whole-frame ratio counts everything a single render pays.
     const double primary_ratio = hybrid.times.primary_visibility() / ray.times.primary_visibility();
     const double frame_ratio = hybrid.times.total() / ray.times.total();
+    return {scene, world,     std::move(ray), std::move(hybrid),
+            diff,  agreement, primary_ratio,  frame_ratio};
+}
 
-    const PhaseTimes &r = ray.times, &h = hybrid.times;
+void print_comparison(const CompareArgs& args, const Comparison& c) {
+    const PhaseTimes &r = c.ray.times, &h = c.hybrid.times;
+    const PrimaryStats& stats = c.hybrid.primary_stats;
     std::printf("glint compare: %s, %dx%d, %zu objects, %s, %s\n", args.scene.scene_path().c_str(),
-                scene.camera.width, scene.camera.height, scene.objects.size(),
+                c.scene.camera.width, c.scene.camera.height, c.scene.objects.size(),
                 args.frame.describe().c_str(),
-                std::string(name_of(world.accelerator().kind())).c_str());
-    std::printf("GL: %s\n\n", hybrid.gl_renderer.c_str());
+                std::string(name_of(c.world.accelerator().kind())).c_str());
+    std::printf("GL: %s\n\n", c.hybrid.gl_renderer.c_str());
     std::printf("%-36s %9s %9s\n", "phase (seconds)", "ray", "hybrid");
     std::printf("%-36s %9s %s\n", "GL context creation", "-", seconds(h.context).c_str());
     std::printf("%-36s %9s %s\n", "shader compilation", "-", seconds(h.compile).c_str());
@@ -73,66 +84,78 @@ int run_compare(const CompareArgs& args) {
     std::printf("%-36s %s %s\n\n", "total", seconds(r.total()).c_str(), seconds(h.total()).c_str());
     std::printf("primary visibility, hybrid/ray:  %.3f  (raster + read-back + resolve vs. casting "
                 "primary rays)\n",
-                primary_ratio);
+                c.primary_ratio);
     std::printf(
         "whole frame, hybrid/ray:         %.3f  (including context, shaders and upload)\n\n",
-        frame_ratio);
+        c.frame_ratio);
     std::printf("id agreement:        %.4f%% of pixels name the same primary object\n",
-                100 * agreement);
+                100 * c.agreement);
     std::printf("fallback pixels:     %llu (named object missed; traced in full)\n",
-                static_cast<unsigned long long>(hybrid.primary_stats.fallbacks));
+                static_cast<unsigned long long>(stats.fallbacks));
     std::printf("corrected pixels:    %llu (exact resolve found a nearer object)\n",
-                static_cast<unsigned long long>(hybrid.primary_stats.corrected));
+                static_cast<unsigned long long>(stats.corrected));
     std::printf("edge pixels:         %llu (exact resolve traced them in full: ids change there)\n",
-                static_cast<unsigned long long>(hybrid.primary_stats.edges));
-    if (std::isinf(diff.psnr_db))
+                static_cast<unsigned long long>(stats.edges));
+    if (std::isinf(c.diff.psnr_db))
         std::printf("PSNR:                inf (identical images)\n");
     else
-        std::printf("PSNR:                %.2f dB\n", diff.psnr_db);
-    std::printf("max abs error:       %d/255\n", diff.max_abs_error);
-    std::printf("pixels off > 1/255:  %.4f%% (%llu)\n", 100 * diff.fraction_over_one,
-                static_cast<unsigned long long>(diff.pixels_over_one));
+        std::printf("PSNR:                %.2f dB\n", c.diff.psnr_db);
+    std::printf("max abs error:       %d/255\n", c.diff.max_abs_error);
+    std::printf("pixels off > 1/255:  %.4f%% (%llu)\n", 100 * c.diff.fraction_over_one,
+                static_cast<unsigned long long>(c.diff.pixels_over_one));
+}
 
+// --json: the same figures, for scripts (bench/crossover.py).
+nlohmann::ordered_json comparison_json(const CompareArgs& args, const Comparison& c) {
+    const auto phases = [](const PhaseTimes& t) {
+        return nlohmann::ordered_json{{"context", t.context}, {"compile", t.compile},
+                                      {"upload", t.upload},   {"raster", t.raster},
+                                      {"primary", t.primary}, {"shading", t.shading}};
+    };
+    const PhaseTimes &r = c.ray.times, &h = c.hybrid.times;
+    const PrimaryStats& stats = c.hybrid.primary_stats;
+    return {
+        {"scene", args.scene.scene_path().string()},
+        {"width", c.scene.camera.width},
+        {"height", c.scene.camera.height},
+        {"objects", c.scene.objects.size()},
+        {"settings", args.frame.describe()},
+        {"accel", name_of(c.world.accelerator().kind())},
+        {"gl_renderer", c.hybrid.gl_renderer},
+        {"ray", {{"seconds", r.total()}, {"phases", phases(r)}}},
+        {"hybrid", {{"seconds", h.total()}, {"phases", phases(h)}}},
+        {"primary_ratio", c.primary_ratio},
+        {"frame_ratio", c.frame_ratio},
+        {"id_agreement", c.agreement},
+        {"fallback_pixels", stats.fallbacks},
+        {"corrected_pixels", stats.corrected},
+        {"edge_pixels", stats.edges},
+        {"psnr_db", std::isinf(c.diff.psnr_db) ? nlohmann::ordered_json(nullptr)
+                                               : nlohmann::ordered_json(c.diff.psnr_db)},
+        {"max_abs_error", c.diff.max_abs_error},
+        {"fraction_over_1_255", c.diff.fraction_over_one},
+        {"pixels", static_cast<double>(c.ray.result.ids.size())},
+    };
+}
+
+int run_compare(const CompareArgs& args) {
+    const Scene scene = prepare(args);
+    const World world(scene, args.scene.accel_kind());
+    const Comparison c = compare(args, scene, world);
+    print_comparison(args, c);
     if (!args.prefix.empty()) {
-        write_png(args.prefix + "-ray.png", ray.result.image);
-        write_png(args.prefix + "-hybrid.png", hybrid.result.image);
-        write_png(args.prefix + "-diff.png",
-                  difference_heatmap(ray.result.image, hybrid.result.image));
-        if (hybrid.items)
-            write_png(args.prefix + "-ids.png",
-                      false_colour(hybrid.items->ids.ids, scene.camera.width, scene.camera.height));
+        const Image& ray = c.ray.result.image;
+        write_png(args.prefix + "-ray.png", ray);
+        write_png(args.prefix + "-hybrid.png", c.hybrid.result.image);
+        write_png(args.prefix + "-diff.png", difference_heatmap(ray, c.hybrid.result.image));
+        if (c.hybrid.items)
+            write_png(
+                args.prefix + "-ids.png",
+                false_colour(c.hybrid.items->ids.ids, scene.camera.width, scene.camera.height));
         std::printf("\nwrote %s-{ray,hybrid,diff,ids}.png\n", args.prefix.c_str());
     }
-    if (!args.json.empty()) {
-        const auto phases = [](const PhaseTimes& t) {
-            return nlohmann::ordered_json{{"context", t.context}, {"compile", t.compile},
-                                          {"upload", t.upload},   {"raster", t.raster},
-                                          {"primary", t.primary}, {"shading", t.shading}};
-        };
-        const nlohmann::ordered_json out = {
-            {"scene", args.scene.scene_path().string()},
-            {"width", scene.camera.width},
-            {"height", scene.camera.height},
-            {"objects", scene.objects.size()},
-            {"settings", args.frame.describe()},
-            {"accel", name_of(world.accelerator().kind())},
-            {"gl_renderer", hybrid.gl_renderer},
-            {"ray", {{"seconds", r.total()}, {"phases", phases(r)}}},
-            {"hybrid", {{"seconds", h.total()}, {"phases", phases(h)}}},
-            {"primary_ratio", primary_ratio},
-            {"frame_ratio", frame_ratio},
-            {"id_agreement", agreement},
-            {"fallback_pixels", hybrid.primary_stats.fallbacks},
-            {"corrected_pixels", hybrid.primary_stats.corrected},
-            {"edge_pixels", hybrid.primary_stats.edges},
-            {"psnr_db", std::isinf(diff.psnr_db) ? nlohmann::ordered_json(nullptr)
-                                                 : nlohmann::ordered_json(diff.psnr_db)},
-            {"max_abs_error", diff.max_abs_error},
-            {"fraction_over_1_255", diff.fraction_over_one},
-            {"pixels", pixels},
-        };
-        write_file_atomically(args.json, out.dump(2) + "\n");
-    }
+    if (!args.json.empty())
+        write_file_atomically(args.json, comparison_json(args, c).dump(2) + "\n");
     return 0;
 }
 

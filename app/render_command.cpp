@@ -45,103 +45,94 @@ RenderJob prepare(const RenderArgs& args) {
     return job;
 }
 
-int run_render(const RenderArgs& args) {
-    const Stopwatch total;
-    Stopwatch phase;
-    const RenderJob job = prepare(args);
-    const Scene& scene = job.scene;
-    const fs::path& scene_path = job.scene_path;
-    const fs::path& output = job.output;
-    const double load_seconds = phase.lap();
-    World world(scene, args.scene.accel_kind());
-    if (!args.stats.empty()) world.count_traversals(true);
-    const double prepare_seconds = phase.lap();
+// What one render measured: the report's and --stats' figures.
+struct RenderReport {
+    const RenderArgs& args;
+    const RenderJob& job;
+    const World& world;
+    const Frame& frame;
+    CutoffBound cutoff;
+    int threads;
+    double load_seconds, prepare_seconds, write_seconds, total_seconds;
+};
 
-    std::atomic<int> tiles_done{0};
-    const FrameSettings settings = args.frame.settings();
-    Frame frame;
-    {
-        // Primary hits and shading each visit every tile once.
-        const Progress progress(
-            "rendering", 2 * tile_count(scene.camera.width, scene.camera.height), tiles_done);
-        frame = render_frame(world, settings, &tiles_done);
+// The --stats file: settings, seconds per phase, rays, cut-off, structure, hybrid figures.
+nlohmann::ordered_json stats_json(const RenderReport& r) {
+    const Scene& scene = r.job.scene;
+    const RayCounts& rays = r.frame.result.rays;
+    const PhaseTimes& t = r.frame.times;
+    nlohmann::ordered_json stats = {
+        {"scene", r.job.scene_path.string()},
+        {"output", r.job.output.string()},
+        {"width", scene.camera.width},
+        {"height", scene.camera.height},
+        {"mode", r.args.frame.mode},
+        {"threads", r.threads},
+        {"max_depth", scene.render.max_depth},
+        {"min_reflectivity", scene.render.min_reflectivity},
+        {"seconds",
+         {{"load", r.load_seconds},
+          {"prepare", r.prepare_seconds},
+          {"context", t.context},
+          {"compile", t.compile},
+          {"upload", t.upload},
+          {"raster", t.raster},
+          {"primary", t.primary},
+          {"shading", t.shading},
+          {"write", r.write_seconds},
+          {"total", r.total_seconds}}},
+        {"rays",
+         {{"primary", rays.primary}, {"shadow", rays.shadow}, {"reflection", rays.reflection}}},
+        {"cutoff",
+         {{"bound_max_255", r.cutoff.max},
+          {"pixels_over_1_255", r.cutoff.pixels_over_one},
+          {"largest_omitted_weight", r.cutoff.largest_omitted_weight}}},
+    };
+    // Per ray: over every query the tracer made (primary, shadow and reflection rays, and in
+    // hybrid mode the resolve's exact-interval queries, counted with the primary rays).
+    const TraversalCounters counts = r.world.traversal_counts();
+    const double queries = static_cast<double>(rays.primary + rays.shadow + rays.reflection);
+    const Accelerator& accel = r.world.accelerator();
+    stats["accel"] = {
+        {"kind", name_of(accel.kind())},
+        {"build_seconds", r.world.build_seconds()},
+        {"memory_bytes", accel.memory_bytes()},
+        {"nodes", accel.node_count()},
+        {"nodes_visited_per_ray", static_cast<double>(counts.nodes) / queries},
+        {"primitives_tested_per_ray", static_cast<double>(counts.primitives) / queries}};
+    if (r.args.frame.settings().mode == Mode::hybrid) {
+        const PrimaryStats& p = r.frame.primary_stats;
+        const std::vector<float>& deviations = r.frame.deviations;
+        stats["hybrid"] = {
+            {"gl", r.args.frame.gl},
+            {"gl_renderer", r.frame.gl_renderer},
+            {"raster", r.args.frame.raster},
+            {"tessellation", r.args.frame.tessellation},
+            {"resolve", r.args.frame.resolve},
+            {"exact_intersections", p.exact_intersections},
+            {"fallbacks", p.fallbacks},
+            {"corrected", p.corrected},
+            {"edges", p.edges},
+            {"max_deviation",
+             deviations.empty() ? 0.0f : *std::max_element(deviations.begin(), deviations.end())}};
     }
-    phase.restart();
-    write_png(output, frame.result.image);
-    const double write_seconds = phase.seconds();
-    const double total_seconds = total.seconds();
-    const int threads =
-        args.frame.threads > 0 ? args.frame.threads : tbb::this_task_arena::max_concurrency();
-    const RayCounts& rays = frame.result.rays;
-    const PhaseTimes& t = frame.times;
-    const CutoffBound cutoff = cutoff_bound(scene, frame.result);
+    return stats;
+}
 
-    if (!args.stats.empty()) {
-        nlohmann::ordered_json stats = {
-            {"scene", scene_path.string()},
-            {"output", output.string()},
-            {"width", scene.camera.width},
-            {"height", scene.camera.height},
-            {"mode", args.frame.mode},
-            {"threads", threads},
-            {"max_depth", scene.render.max_depth},
-            {"min_reflectivity", scene.render.min_reflectivity},
-            {"seconds",
-             {{"load", load_seconds},
-              {"prepare", prepare_seconds},
-              {"context", t.context},
-              {"compile", t.compile},
-              {"upload", t.upload},
-              {"raster", t.raster},
-              {"primary", t.primary},
-              {"shading", t.shading},
-              {"write", write_seconds},
-              {"total", total_seconds}}},
-            {"rays",
-             {{"primary", rays.primary}, {"shadow", rays.shadow}, {"reflection", rays.reflection}}},
-            {"cutoff",
-             {{"bound_max_255", cutoff.max},
-              {"pixels_over_1_255", cutoff.pixels_over_one},
-              {"largest_omitted_weight", cutoff.largest_omitted_weight}}},
-        };
-        // Per ray: over every query the tracer made (primary, shadow and reflection rays, and in
-        // hybrid mode the resolve's exact-interval queries, counted with the primary rays).
-        const TraversalCounters counts = world.traversal_counts();
-        const double queries = static_cast<double>(rays.primary + rays.shadow + rays.reflection);
-        stats["accel"] = {
-            {"kind", name_of(world.accelerator().kind())},
-            {"build_seconds", world.build_seconds()},
-            {"memory_bytes", world.accelerator().memory_bytes()},
-            {"nodes", world.accelerator().node_count()},
-            {"nodes_visited_per_ray", static_cast<double>(counts.nodes) / queries},
-            {"primitives_tested_per_ray", static_cast<double>(counts.primitives) / queries}};
-        if (settings.mode == Mode::hybrid) {
-            stats["hybrid"] = {{"gl", args.frame.gl},
-                               {"gl_renderer", frame.gl_renderer},
-                               {"raster", args.frame.raster},
-                               {"tessellation", args.frame.tessellation},
-                               {"resolve", args.frame.resolve},
-                               {"exact_intersections", frame.primary_stats.exact_intersections},
-                               {"fallbacks", frame.primary_stats.fallbacks},
-                               {"corrected", frame.primary_stats.corrected},
-                               {"edges", frame.primary_stats.edges},
-                               {"max_deviation", frame.deviations.empty()
-                                                     ? 0.0f
-                                                     : *std::max_element(frame.deviations.begin(),
-                                                                         frame.deviations.end())}};
-        }
-        write_file_atomically(args.stats, stats.dump(2) + "\n");
-    }
+// The lines every render prints: where it wrote and how long it took, the rays, the cut-off.
+void print_report(const RenderReport& r) {
+    const Scene& scene = r.job.scene;
+    const RayCounts& rays = r.frame.result.rays;
     std::printf("glint: wrote %s (%dx%d, %s, %s, %d threads) in %.3f s (render %.3f s)\n",
-                output.c_str(), scene.camera.width, scene.camera.height,
-                args.frame.describe().c_str(),
-                std::string(name_of(world.accelerator().kind())).c_str(), threads, total_seconds,
-                t.total());
+                r.job.output.c_str(), scene.camera.width, scene.camera.height,
+                r.args.frame.describe().c_str(),
+                std::string(name_of(r.world.accelerator().kind())).c_str(), r.threads,
+                r.total_seconds, r.frame.times.total());
     std::printf("rays: %llu primary, %llu shadow, %llu reflection\n",
                 static_cast<unsigned long long>(rays.primary),
                 static_cast<unsigned long long>(rays.shadow),
                 static_cast<unsigned long long>(rays.reflection));
-    if (cutoff.largest_omitted_weight == 0)
+    if (r.cutoff.largest_omitted_weight == 0)
         std::printf("reflection cut-off: no reflection ray omitted\n");
     else
         // A worst case from the brightest the scene could be (trace/cutoff.h), not a measured
@@ -151,8 +142,39 @@ int run_render(const RenderArgs& args) {
                     "than %d/255 (a worst-case bound, not a measured error; heaviest omitted path "
                     "weight %.3g)\n",
                     scene.render.max_depth, static_cast<double>(scene.render.min_reflectivity),
-                    static_cast<unsigned long long>(cutoff.pixels_over_one), cutoff.max,
-                    cutoff.largest_omitted_weight);
+                    static_cast<unsigned long long>(r.cutoff.pixels_over_one), r.cutoff.max,
+                    r.cutoff.largest_omitted_weight);
+}
+
+int run_render(const RenderArgs& args) {
+    const Stopwatch total;
+    Stopwatch phase;
+    const RenderJob job = prepare(args);
+    const Scene& scene = job.scene;
+    const double load_seconds = phase.lap();
+    World world(scene, args.scene.accel_kind());
+    if (!args.stats.empty()) world.count_traversals(true);
+    const double prepare_seconds = phase.lap();
+
+    std::atomic<int> tiles_done{0};
+    Frame frame;
+    {
+        // Primary hits and shading each visit every tile once.
+        const Progress progress(
+            "rendering", 2 * tile_count(scene.camera.width, scene.camera.height), tiles_done);
+        frame = render_frame(world, args.frame.settings(), &tiles_done);
+    }
+    phase.restart();
+    write_png(job.output, frame.result.image);
+    const double write_seconds = phase.seconds();
+    const double total_seconds = total.seconds();
+    const int threads =
+        args.frame.threads > 0 ? args.frame.threads : tbb::this_task_arena::max_concurrency();
+    const RenderReport report{
+        args,    job,          world,           frame,         cutoff_bound(scene, frame.result),
+        threads, load_seconds, prepare_seconds, write_seconds, total_seconds};
+    if (!args.stats.empty()) write_file_atomically(args.stats, stats_json(report).dump(2) + "\n");
+    print_report(report);
     return 0;
 }
 

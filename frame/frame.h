@@ -15,9 +15,7 @@ namespace glint {
 
 enum class Mode { hybrid, ray };
 
-template <> struct EnumNames<Mode> {
-    static constexpr std::array<std::string_view, 2> names = {"hybrid", "ray"};
-};
+template <> struct EnumNames<Mode> { static constexpr auto names = name_table("hybrid", "ray"); };
 
 struct FrameSettings {
     Mode mode = Mode::hybrid;

@@ -18,8 +18,8 @@ inline constexpr int kViewCount = 6;
 
 // For --view: "items".
 template <> struct EnumNames<View> {
-    static constexpr std::array<std::string_view, kViewCount> names = {
-        "final", "items", "depth", "normals", "difference", "reflections"};
+    static constexpr auto names =
+        name_table("final", "items", "depth", "normals", "difference", "reflections");
 };
 
 std::string_view view_label(View view); // for people, in the title: "item buffer"

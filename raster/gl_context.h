@@ -14,7 +14,7 @@ namespace glint {
 enum class GlBackend { osmesa, egl };
 
 template <> struct EnumNames<GlBackend> {
-    static constexpr std::array<std::string_view, 2> names = {"osmesa", "egl"};
+    static constexpr auto names = name_table("osmesa", "egl");
 };
 
 // No usable GL context: the message says what failed.

@@ -20,7 +20,7 @@ namespace glint {
 enum class RasterMode { mesh, proxy };
 
 template <> struct EnumNames<RasterMode> {
-    static constexpr std::array<std::string_view, 2> names = {"mesh", "proxy"};
+    static constexpr auto names = name_table("mesh", "proxy");
 };
 
 struct ItemBufferResult {

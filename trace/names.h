@@ -11,9 +11,13 @@
 
 namespace glint {
 
-// Specialised beside each named enum with `static constexpr std::array<std::string_view, N>
-// names`, one per enumerator, in order.
+// Specialised beside each named enum with `static constexpr auto names = name_table(…)`, one
+// name per enumerator, in order.
 template <class Enum> struct EnumNames;
+
+template <class... Names> constexpr auto name_table(Names... names) {
+    return std::array<std::string_view, sizeof...(Names)>{names...};
+}
 
 template <class Enum> constexpr std::string_view name_of(Enum value) {
     return EnumNames<Enum>::names[static_cast<std::size_t>(value)];

@@ -68,7 +68,7 @@ RenderResult render_ray_frame(const Scene& scene, std::optional<AccelKind> accel
 enum class Precision { f32, f64 };
 
 template <> struct EnumNames<Precision> {
-    static constexpr std::array<std::string_view, 2> names = {"float", "double"};
+    static constexpr auto names = name_table("float", "double");
 };
 
 inline RenderResult render_ray_frame(Precision precision, const Scene& scene,

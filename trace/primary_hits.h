@@ -17,7 +17,7 @@ namespace glint {
 enum class Resolve { exact, trust };
 
 template <> struct EnumNames<Resolve> {
-    static constexpr std::array<std::string_view, 2> names = {"exact", "trust"};
+    static constexpr auto names = name_table("exact", "trust");
 };
 
 inline namespace GLINT_PRECISION {

@@ -29,8 +29,8 @@ inline constexpr double kMaxCoordinate = 1e15;
 enum class ShapeKind : std::uint8_t { sphere, plane, box, disk, cylinder, cone, triangle, mesh };
 
 template <> struct EnumNames<ShapeKind> {
-    static constexpr std::array<std::string_view, 8> names = {
-        "sphere", "plane", "box", "disk", "cylinder", "cone", "triangle", "mesh"};
+    static constexpr auto names =
+        name_table("sphere", "plane", "box", "disk", "cylinder", "cone", "triangle", "mesh");
 };
 
 struct Camera {

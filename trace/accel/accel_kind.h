@@ -11,8 +11,7 @@ namespace glint {
 enum class AccelKind : std::uint8_t { list, bvh, spheres, grid, kd };
 
 template <> struct EnumNames<AccelKind> {
-    static constexpr std::array<std::string_view, 5> names = {"list", "bvh", "spheres", "grid",
-                                                              "kd"};
+    static constexpr auto names = name_table("list", "bvh", "spheres", "grid", "kd");
 };
 
 } // namespace glint
