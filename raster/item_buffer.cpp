@@ -262,6 +262,10 @@ struct ItemBuffer::Impl {
         return image;
     }
 
+    void draw_single(const World& world, const DrawItem& item, const glm::dmat4& clip, float near,
+                     bool flat_preview);
+    void draw_instanced(const World& world, const glm::dmat4& clip, bool flat_preview);
+
     ItemBufferResult read_back(float near) {
         const std::size_t pixels = static_cast<std::size_t>(width) * height;
         ItemBufferResult result;
@@ -410,6 +414,89 @@ float near_plane(const World& world) {
 
 } // namespace
 
+// One object drawn alone: a proxy (or plane) with its per-object uniforms, or a mesh not drawn
+// instanced.
+void ItemBuffer::Impl::draw_single(const World& world, const DrawItem& item, const glm::dmat4& clip,
+                                   float near, bool flat_preview) {
+    Impl& gl = *this;
+    const PinholeCamera& camera = world.camera();
+    const Object& o = world.objects()[item.object];
+    const GLuint program = item.proxy ? gl.proxy_program : gl.mesh_program;
+    glUseProgram(program);
+    const auto uniform = [&](const char* name) { return glGetUniformLocation(program, name); };
+    const glm::dmat4 model = to_mat4(o.transform.linear, o.transform.offset);
+    const glm::mat4 mvp(clip * model);
+    glUniformMatrix4fv(uniform("model_view_projection"), 1, GL_FALSE, glm::value_ptr(mvp));
+    glUniform1i(uniform("flat_preview"), flat_preview);
+    glUniform1i(uniform("instanced"), 0);
+    if (flat_preview) {
+        glUniformMatrix4fv(uniform("model"), 1, GL_FALSE, glm::value_ptr(glm::mat4(model)));
+        glUniform3fv(uniform("diffuse"), 1, glm::value_ptr(world.material(item.object).diffuse));
+    }
+    glUniform1i(uniform("full_screen"), item.full_screen);
+    glUniform1ui(uniform("object_id"), item.object + 1);
+    if (item.proxy) {
+        const glm::mat4 inverse(to_mat4(o.transform.inverse_linear, o.transform.inverse_offset));
+        glUniformMatrix4fv(uniform("world_to_object"), 1, GL_FALSE, glm::value_ptr(inverse));
+        glUniform1i(uniform("shape"), static_cast<int>(o.shape));
+        glUniform1f(uniform("top_radius"), o.top_radius);
+        glUniform1i(uniform("open"), o.open);
+        glUniform3fv(uniform("forward"), 1, glm::value_ptr(camera.forward()));
+        const Vec3 right = camera.right_scaled(), up = camera.up_scaled();
+        glUniform3fv(uniform("right_scaled"), 1, glm::value_ptr(right));
+        glUniform3fv(uniform("up_scaled"), 1, glm::value_ptr(up));
+        glUniform2f(uniform("viewport"), static_cast<float>(camera.width()),
+                    static_cast<float>(camera.height()));
+        glUniform1f(uniform("near"), near);
+    }
+    if (item.full_screen) {
+        glBindVertexArray(gl.empty_vao);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    } else {
+        const Impl::Geometry& g = gl.geometries[item.geometry];
+        glBindVertexArray(g.vao);
+        glDrawElements(GL_TRIANGLES, g.index_count, GL_UNSIGNED_INT, nullptr);
+    }
+}
+
+// Every tessellated shape and mesh: one instanced draw per geometry.
+void ItemBuffer::Impl::draw_instanced(const World& world, const glm::dmat4& clip,
+                                      bool flat_preview) {
+    Impl& gl = *this;
+    // Every tessellated shape and mesh: one instanced draw per geometry, with the instances'
+    // matrices composed in double as above, then uploaded in one buffer.
+    std::vector<Impl::Instance> instances;
+    for (const std::vector<std::uint32_t>& objects : gl.instances_of)
+        for (const std::uint32_t object : objects) {
+            const Object& o = world.objects()[object];
+            const glm::dmat4 model = to_mat4(o.transform.linear, o.transform.offset);
+            instances.push_back({glm::mat4(clip * model), glm::mat4(model), object + 1,
+                                 world.material(object).diffuse});
+        }
+    if (!gl.instance_buffer) glGenBuffers(1, &gl.instance_buffer);
+    glBindBuffer(GL_ARRAY_BUFFER, gl.instance_buffer);
+    glBufferData(GL_ARRAY_BUFFER,
+                 static_cast<GLsizeiptr>(instances.size() * sizeof(Impl::Instance)),
+                 instances.data(), GL_STREAM_DRAW);
+    glUseProgram(gl.mesh_program);
+    const auto uniform = [&](const char* name) {
+        return glGetUniformLocation(gl.mesh_program, name);
+    };
+    glUniform1i(uniform("flat_preview"), flat_preview);
+    glUniform1i(uniform("instanced"), 1);
+    glUniform1i(uniform("full_screen"), 0);
+    std::size_t first = 0;
+    for (std::size_t geometry = 0; geometry < gl.instances_of.size(); ++geometry) {
+        const std::size_t count = gl.instances_of[geometry].size();
+        if (count == 0) continue;
+        glBindVertexArray(gl.geometries[geometry].vao);
+        Impl::bind_instances(first);
+        glDrawElementsInstanced(GL_TRIANGLES, gl.geometries[geometry].index_count, GL_UNSIGNED_INT,
+                                nullptr, static_cast<GLsizei>(count));
+        first += count;
+    }
+}
+
 ItemBufferResult ItemBuffer::draw(const World& world, bool flat_preview) {
     Impl& gl = *impl_;
     const PinholeCamera& camera = world.camera();
@@ -417,81 +504,9 @@ ItemBufferResult ItemBuffer::draw(const World& world, bool flat_preview) {
     const glm::dmat4 clip = projection(camera, near);
     const Vec3 background = world.background();
     gl.begin(camera.width(), camera.height(), flat_preview ? &background : nullptr);
-    for (const Impl::DrawItem& item : gl.items) {
-        const Object& o = world.objects()[item.object];
-        const GLuint program = item.proxy ? gl.proxy_program : gl.mesh_program;
-        glUseProgram(program);
-        const auto uniform = [&](const char* name) { return glGetUniformLocation(program, name); };
-        const glm::dmat4 model = to_mat4(o.transform.linear, o.transform.offset);
-        const glm::mat4 mvp(clip * model);
-        glUniformMatrix4fv(uniform("model_view_projection"), 1, GL_FALSE, glm::value_ptr(mvp));
-        glUniform1i(uniform("flat_preview"), flat_preview);
-        glUniform1i(uniform("instanced"), 0);
-        if (flat_preview) {
-            glUniformMatrix4fv(uniform("model"), 1, GL_FALSE, glm::value_ptr(glm::mat4(model)));
-            glUniform3fv(uniform("diffuse"), 1,
-                         glm::value_ptr(world.material(item.object).diffuse));
-        }
-        glUniform1i(uniform("full_screen"), item.full_screen);
-        glUniform1ui(uniform("object_id"), item.object + 1);
-        if (item.proxy) {
-            const glm::mat4 inverse(
-                to_mat4(o.transform.inverse_linear, o.transform.inverse_offset));
-            glUniformMatrix4fv(uniform("world_to_object"), 1, GL_FALSE, glm::value_ptr(inverse));
-            glUniform1i(uniform("shape"), static_cast<int>(o.shape));
-            glUniform1f(uniform("top_radius"), o.top_radius);
-            glUniform1i(uniform("open"), o.open);
-            glUniform3fv(uniform("forward"), 1, glm::value_ptr(camera.forward()));
-            const Vec3 right = camera.right_scaled(), up = camera.up_scaled();
-            glUniform3fv(uniform("right_scaled"), 1, glm::value_ptr(right));
-            glUniform3fv(uniform("up_scaled"), 1, glm::value_ptr(up));
-            glUniform2f(uniform("viewport"), static_cast<float>(camera.width()),
-                        static_cast<float>(camera.height()));
-            glUniform1f(uniform("near"), near);
-        }
-        if (item.full_screen) {
-            glBindVertexArray(gl.empty_vao);
-            glDrawArrays(GL_TRIANGLES, 0, 3);
-        } else {
-            const Impl::Geometry& g = gl.geometries[item.geometry];
-            glBindVertexArray(g.vao);
-            glDrawElements(GL_TRIANGLES, g.index_count, GL_UNSIGNED_INT, nullptr);
-        }
-    }
-    if (!gl.instances_of.empty()) {
-        // Every tessellated shape and mesh: one instanced draw per geometry, with the instances'
-        // matrices composed in double as above, then uploaded in one buffer.
-        std::vector<Impl::Instance> instances;
-        for (const std::vector<std::uint32_t>& objects : gl.instances_of)
-            for (const std::uint32_t object : objects) {
-                const Object& o = world.objects()[object];
-                const glm::dmat4 model = to_mat4(o.transform.linear, o.transform.offset);
-                instances.push_back({glm::mat4(clip * model), glm::mat4(model), object + 1,
-                                     world.material(object).diffuse});
-            }
-        if (!gl.instance_buffer) glGenBuffers(1, &gl.instance_buffer);
-        glBindBuffer(GL_ARRAY_BUFFER, gl.instance_buffer);
-        glBufferData(GL_ARRAY_BUFFER,
-                     static_cast<GLsizeiptr>(instances.size() * sizeof(Impl::Instance)),
-                     instances.data(), GL_STREAM_DRAW);
-        glUseProgram(gl.mesh_program);
-        const auto uniform = [&](const char* name) {
-            return glGetUniformLocation(gl.mesh_program, name);
-        };
-        glUniform1i(uniform("flat_preview"), flat_preview);
-        glUniform1i(uniform("instanced"), 1);
-        glUniform1i(uniform("full_screen"), 0);
-        std::size_t first = 0;
-        for (std::size_t geometry = 0; geometry < gl.instances_of.size(); ++geometry) {
-            const std::size_t count = gl.instances_of[geometry].size();
-            if (count == 0) continue;
-            glBindVertexArray(gl.geometries[geometry].vao);
-            Impl::bind_instances(first);
-            glDrawElementsInstanced(GL_TRIANGLES, gl.geometries[geometry].index_count,
-                                    GL_UNSIGNED_INT, nullptr, static_cast<GLsizei>(count));
-            first += count;
-        }
-    }
+    for (const Impl::DrawItem& item : gl.items)
+        gl.draw_single(world, item, clip, near, flat_preview);
+    if (!gl.instances_of.empty()) gl.draw_instanced(world, clip, flat_preview);
     glBindVertexArray(0);
     ItemBufferResult result = gl.read_back(near);
     if (flat_preview) result.flat = gl.read_flat();
