@@ -324,6 +324,8 @@ void write_csv(const std::vector<SceneResult>& results, const fs::path& path) {
     write_file_atomically(path, csv.str());
 }
 
+// The summary, one document written top to bottom (65 lines: its parts would each need the same
+// five arguments, and the order of the document is the order of the code).
 std::string markdown(const std::vector<SceneResult>& results, const TradeoffArgs& args,
                      const fs::path& plots, const std::string& gl_renderer, double seconds) {
     std::ostringstream md;
@@ -425,6 +427,8 @@ std::vector<SceneResult> prepare(const TradeoffArgs& args) {
     return results;
 }
 
+// The command's steps in their order: checks, then per scene the exact image and the sweep, then
+// CSV, plots and summary (about 60 lines, kept whole so that the order reads as it runs).
 int run_tradeoff(const TradeoffArgs& args) {
     const Stopwatch watch;
     std::vector<SceneResult> results = prepare(args);

@@ -395,6 +395,8 @@ void Preview::update_title(bool force) {
     glfwSetWindowTitle(window_.handle(), title_.c_str());
 }
 
+// The event loop (65 lines, one body so that pacing, restarts, uploads and the frame log read in
+// the order they happen each frame).
 int Preview::run() {
     GLFWwindow* w = window_.handle();
     if (!options_.scripted()) std::cout << kPreviewKeys << std::flush;
