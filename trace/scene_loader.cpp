@@ -327,8 +327,8 @@ class Loader {
         return mesh;
     }
 
-    // One object's keys, checked in the order docs/SCENES.md lists them (65 lines: split, the
-    // checks that depend on the shape would be scattered from the shape's own).
+    // One object's keys and the checks between them (65 lines: split up, the checks that depend
+    // on the shape would be scattered away from the shape's own).
     void object(const Node& node, Scene& scene) const {
         expect_object(node, {"shape", "material", "transform", "top_radius", "open", "vertices",
                              "indices", "file"});
