@@ -1,6 +1,7 @@
-// One frame, start to finish, in either mode: the pipeline `render` and `compare` share.
-// Hybrid: GL context → shaders → upload → item buffer → exact resolve → shading.
-// Ray: primary rays → shading. Every phase is timed on its own.
+// One frame, start to finish, in either mode and either precision: the pipeline that render,
+// compare, tradeoff and the GL tests share (the preview traces tiles through the same pixel
+// path, trace/pixel.h). Hybrid: GL context → shaders → upload → item buffer → exact resolve →
+// shading. Ray: primary rays → shading. Every phase is timed on its own.
 #pragma once
 
 #include "raster/gl_context.h"

@@ -36,7 +36,7 @@ World::World(const Scene& scene, std::shared_ptr<const SceneGeometry> geometry, 
     : geometry_(std::move(geometry)), camera_(scene.camera), background_(scene.background),
       ambient_(scene.ambient), settings_(scene.render) {
     // Camera-relative coordinates, composed in double: precision follows the scene's size, not
-    // its distance from the world origin (docs/ARCHITECTURE.md, "Precision").
+    // its distance from the world origin (docs/ARCHITECTURE.md, "Conventions": transforms).
     const DMat4 to_camera = translation_matrix(-scene.camera.eye);
     objects_.reserve(scene.objects.size());
     for (const SceneObject& o : scene.objects) {
