@@ -25,11 +25,7 @@ Frame render_frame(const World& world, const FrameSettings& settings,
         frame.deviations = items.deviations();
         source = {&frame.items->ids, settings.resolve};
     }
-    const std::vector<Hit> primary = timed(frame.times.primary, [&] {
-        return primary_hits(world, source, frame.primary_stats, progress);
-    });
-    frame.result =
-        timed(frame.times.shading, [&] { return shade_image(world, primary, progress); });
+    frame.result = trace_frame(world, source, frame.primary_stats, progress, frame.times);
     return frame;
 }
 

@@ -3,11 +3,10 @@
 namespace glint {
 inline namespace GLINT_PRECISION {
 
-PixelSample shade_pixel(const World& world, int x, int y, const Hit& primary) {
+PixelSample shade_pixel(const World& world, const Ray& ray, const Hit& primary) {
     PixelSample sample;
     sample.hit = primary;
     ++sample.rays.primary;
-    const Ray ray = world.camera().ray(x, y);
     if (!primary.found()) {
         sample.colour = world.background();
         return sample;

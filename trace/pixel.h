@@ -18,13 +18,15 @@ struct PixelSample {
     Real omitted_weight = 0; // trace/shading.h: the weight of the reflection not cast, or 0
 };
 
-// Shades pixel (x, y) of the world's camera from its primary hit.
-PixelSample shade_pixel(const World& world, int x, int y, const Hit& primary);
+// Shades a camera ray from its primary hit.
+PixelSample shade_pixel(const World& world, const Ray& ray, const Hit& primary);
 
-// The whole path of pixel (x, y): its primary hit from `source`, then shading.
+// The whole path of pixel (x, y): its camera ray, made once, its primary hit from `source`,
+// then shading.
 inline PixelSample trace_pixel(const World& world, const PrimarySource& source, int x, int y,
                                PrimaryStats& stats) {
-    return shade_pixel(world, x, y, primary_hit(world, source, x, y, stats));
+    const Ray ray = world.camera().ray(x, y);
+    return shade_pixel(world, ray, primary_hit(world, source, x, y, ray, stats));
 }
 
 } // namespace GLINT_PRECISION

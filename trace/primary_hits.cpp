@@ -39,10 +39,9 @@ bool on_id_boundary(const IdImage& ids, int x, int y) {
 } // namespace
 
 Hit resolve_pixel(const World& world, const IdImage& ids, Resolve resolve, int x, int y,
-                  PrimaryStats& stats) {
+                  const Ray& ray, PrimaryStats& stats) {
     const PinholeCamera& camera = world.camera();
     const std::size_t p = static_cast<std::size_t>(y) * ids.width + x;
-    const Ray ray = camera.ray(x, y);
     if (resolve == Resolve::exact && on_id_boundary(ids, x, y)) {
         ++stats.edges;
         return world.intersect(ray);
@@ -79,7 +78,7 @@ std::vector<Hit> primary_hits(const World& world, const PrimarySource& source, P
         for (int y = y0; y < y1; ++y)
             for (int x = x0; x < x1; ++x)
                 hits[static_cast<std::size_t>(y) * width + x] =
-                    primary_hit(world, source, x, y, local);
+                    primary_hit(world, source, x, y, camera.ray(x, y), local);
         const std::lock_guard lock(stats_mutex);
         stats += local;
     });

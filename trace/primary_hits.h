@@ -49,15 +49,16 @@ struct PrimarySource {
     Resolve resolve = Resolve::exact;
 };
 
-// Resolves pixel (x, y) from `ids`, counting into `stats`.
+// Resolves pixel (x, y), whose camera ray is `ray`, from `ids`, counting into `stats`.
 Hit resolve_pixel(const World& world, const IdImage& ids, Resolve resolve, int x, int y,
-                  PrimaryStats& stats);
+                  const Ray& ray, PrimaryStats& stats);
 
-// Pixel (x, y)'s primary hit from `source` (stats are counted only when resolving ids).
+// Pixel (x, y)'s primary hit from `source`, `ray` its camera ray (stats are counted only when
+// resolving ids).
 inline Hit primary_hit(const World& world, const PrimarySource& source, int x, int y,
-                       PrimaryStats& stats) {
-    return source.ids ? resolve_pixel(world, *source.ids, source.resolve, x, y, stats)
-                      : world.intersect(world.camera().ray(x, y));
+                       const Ray& ray, PrimaryStats& stats) {
+    return source.ids ? resolve_pixel(world, *source.ids, source.resolve, x, y, ray, stats)
+                      : world.intersect(ray);
 }
 
 // Every pixel's primary hit from `source`, row-major, top row first.

@@ -21,7 +21,7 @@ RenderResult shade_image(const World& world, const std::vector<Hit>& primary,
         for (int y = y0; y < y1; ++y) {
             for (int x = x0; x < x1; ++x) {
                 const std::size_t i = static_cast<std::size_t>(y) * width + x;
-                const PixelSample sample = shade_pixel(world, x, y, primary[i]);
+                const PixelSample sample = shade_pixel(world, camera.ray(x, y), primary[i]);
                 result.omitted_weight[i] = static_cast<float>(sample.omitted_weight);
                 store_colour(sample.colour, result.image.pixel(x, y));
                 counts += sample.rays;
@@ -44,12 +44,18 @@ std::vector<std::uint32_t> object_ids(const std::vector<Hit>& primary) {
     return ids;
 }
 
+RenderResult trace_frame(const World& world, const PrimarySource& source, PrimaryStats& stats,
+                         const TileProgress& progress, PhaseTimes& times) {
+    const std::vector<Hit> primary =
+        timed(times.primary, [&] { return primary_hits(world, source, stats, progress); });
+    return timed(times.shading, [&] { return shade_image(world, primary, progress); });
+}
+
 RenderResult render_ray_frame(const Scene& scene, std::optional<AccelKind> accel,
                               const TileProgress& progress, PhaseTimes& times) {
     const World world = timed(times.prepare, [&] { return World(scene, accel); });
-    const std::vector<Hit> primary =
-        timed(times.primary, [&] { return primary_hits_by_ray(world, progress); });
-    return timed(times.shading, [&] { return shade_image(world, primary, progress); });
+    PrimaryStats unused; // counted only when resolving ids
+    return trace_frame(world, {}, unused, progress, times);
 }
 
 } // namespace GLINT_PRECISION

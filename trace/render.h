@@ -19,6 +19,11 @@ inline void store_colour(Vec3 c, std::uint8_t* pixel) {
 RenderResult shade_image(const World& world, const std::vector<Hit>& primary,
                          const TileProgress& progress = {});
 
+// The tracer's part of every frame: primary hits from `source`, then shading, each phase timed
+// into `times` (frame/frame.h draws the item buffer before it in hybrid mode).
+RenderResult trace_frame(const World& world, const PrimarySource& source, PrimaryStats& stats,
+                         const TileProgress& progress, PhaseTimes& times);
+
 // Ray mode in one call: primary hits by ray casting, then shading.
 RenderResult render(const World& world, const TileProgress& progress = {});
 
