@@ -1,6 +1,7 @@
 // `glint compare`: the same scene in hybrid and ray mode in one run, phase by phase, with the
 // ray image as the reference: id agreement, fallbacks, PSNR, maximum error, pixels off by > 1/255.
 #include "app/options.h"
+#include "app/phase_json.h"
 
 #include "trace/image_metrics.h"
 
@@ -107,11 +108,6 @@ void print_comparison(const CompareArgs& args, const Comparison& c) {
 
 // --json: the same figures, for scripts (bench/crossover.py).
 nlohmann::ordered_json comparison_json(const CompareArgs& args, const Comparison& c) {
-    const auto phases = [](const PhaseTimes& t) {
-        return nlohmann::ordered_json{{"context", t.context}, {"compile", t.compile},
-                                      {"upload", t.upload},   {"raster", t.raster},
-                                      {"primary", t.primary}, {"shading", t.shading}};
-    };
     const PhaseTimes &r = c.ray.times, &h = c.hybrid.times;
     const PrimaryStats& stats = c.hybrid.primary_stats;
     return {
@@ -122,8 +118,8 @@ nlohmann::ordered_json comparison_json(const CompareArgs& args, const Comparison
         {"settings", args.frame.describe()},
         {"accel", name_of(c.world.accelerator().kind())},
         {"gl_renderer", c.hybrid.gl_renderer},
-        {"ray", {{"seconds", r.total()}, {"phases", phases(r)}}},
-        {"hybrid", {{"seconds", h.total()}, {"phases", phases(h)}}},
+        {"ray", {{"seconds", r.total()}, {"phases", phase_seconds_json(r)}}},
+        {"hybrid", {{"seconds", h.total()}, {"phases", phase_seconds_json(h)}}},
         {"primary_ratio", c.primary_ratio},
         {"frame_ratio", c.frame_ratio},
         {"id_agreement", c.agreement},

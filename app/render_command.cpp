@@ -1,5 +1,6 @@
 // `glint render`: load, prepare, draw the item buffer (hybrid), trace, write.
 #include "app/options.h"
+#include "app/phase_json.h"
 #include "app/progress.h"
 
 #include "trace/cutoff.h"
@@ -70,17 +71,7 @@ nlohmann::ordered_json stats_json(const RenderReport& r) {
         {"threads", r.threads},
         {"max_depth", scene.render.max_depth},
         {"min_reflectivity", scene.render.min_reflectivity},
-        {"seconds",
-         {{"load", r.load_seconds},
-          {"prepare", r.prepare_seconds},
-          {"context", t.context},
-          {"compile", t.compile},
-          {"upload", t.upload},
-          {"raster", t.raster},
-          {"primary", t.primary},
-          {"shading", t.shading},
-          {"write", r.write_seconds},
-          {"total", r.total_seconds}}},
+        {"seconds", {{"load", r.load_seconds}, {"prepare", r.prepare_seconds}}},
         {"rays",
          {{"primary", rays.primary}, {"shadow", rays.shadow}, {"reflection", rays.reflection}}},
         {"cutoff",
@@ -88,6 +79,10 @@ nlohmann::ordered_json stats_json(const RenderReport& r) {
           {"pixels_over_1_255", r.cutoff.pixels_over_one},
           {"largest_omitted_weight", r.cutoff.largest_omitted_weight}}},
     };
+    nlohmann::ordered_json& seconds = stats["seconds"];
+    seconds.update(phase_seconds_json(t));
+    seconds["write"] = r.write_seconds;
+    seconds["total"] = r.total_seconds;
     // Per ray: over every query the tracer made (primary, shadow and reflection rays, and in
     // hybrid mode the resolve's exact-interval queries, counted with the primary rays).
     const TraversalCounters counts = r.world.traversal_counts();

@@ -1,0 +1,16 @@
+// The frame's phase times as JSON, as render's --stats and compare's --json both write them.
+#pragma once
+
+#include "trace/precision.h"
+
+#include <nlohmann/json.hpp>
+
+namespace glint {
+
+// {"context": …, "compile": …, "upload": …, "raster": …, "primary": …, "shading": …}, seconds.
+inline nlohmann::ordered_json phase_seconds_json(const PhaseTimes& t) {
+    return {{"context", t.context}, {"compile", t.compile}, {"upload", t.upload},
+            {"raster", t.raster},   {"primary", t.primary}, {"shading", t.shading}};
+}
+
+} // namespace glint
