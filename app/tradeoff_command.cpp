@@ -445,18 +445,20 @@ int run_tradeoff(const TradeoffArgs& args) {
         const Scene& scene = sr.scene;
         Scene deep = scene;
         deep.render = {kMaxDepth, 0.0f};
-        FrameSettings exact;
-        exact.mode = Mode::ray;
-        exact.threads = args.threads;
-        exact.precision = Precision::f64;
-        const Frame reference = render_frame(deep, std::nullopt, exact);
+        // The scene's meshes and materials, prepared once for the float renders of its sweep.
+        const auto geometry = std::make_shared<const SceneGeometry>(scene);
+        FrameSettings deep_ray;
+        deep_ray.mode = Mode::ray;
+        deep_ray.threads = args.threads;
+        deep_ray.precision = Precision::f64;
+        const Frame reference = render_frame(deep, std::nullopt, deep_ray);
         sr.reference_seconds = reference.times.total();
         sr.reference_bound = cutoff_bound(deep, reference.result);
-        exact.precision = Precision::f32;
-        const Image untruncated_float = render_frame(deep, std::nullopt, exact).result.image;
+        deep_ray.precision = Precision::f32;
+        const Image untruncated_float =
+            render_frame(deep, std::nullopt, deep_ray, nullptr, geometry).result.image;
 
         const auto settings = sweep(scene);
-        const auto geometry = std::make_shared<const SceneGeometry>(scene);
         std::map<std::string, std::size_t> seen;
         std::printf("%s (%dx%d): %zu settings\n", sr.name.c_str(), scene.camera.width,
                     scene.camera.height, settings.size());
