@@ -9,6 +9,7 @@
 #include <shaders.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <map>
 #include <string>
@@ -33,8 +34,8 @@ GLuint compile(GLenum kind, const char* source) {
     return shader;
 }
 
-// GLSL constants for the closed set of shapes, from its one table (trace/scene.h), inserted after
-// a shader's #version line: `const int SHAPE_SPHERE = 0;` and so on. A shader naming a shape
+// GLSL constants for the closed set of shapes, from its one table (trace/shapes/table.h), inserted
+// after a shader's #version line: `const int SHAPE_SPHERE = 0;` and so on. A shader naming a shape
 // that the table lacks fails to compile.
 std::string with_shape_constants(std::string_view source) {
     std::string constants;
@@ -88,6 +89,24 @@ glm::dmat4 to_mat4(const Mat3& linear, Vec3 offset) {
     glm::dmat4 m{glm::dmat3(linear)};
     m[3] = glm::dvec4(DVec3(offset), 1.0);
     return m;
+}
+
+// A proxy mode box: the object-space bounds of a tessellated shape, which read only its
+// parameters (never a mesh), as the corners lo and hi; an axis the bounds leave flat (a disk's)
+// is thickened to ±0.01 so that the box has faces to rasterize.
+std::array<float, 6> proxy_box(const Object& o) {
+    SceneObject shape;
+    shape.shape = o.shape;
+    shape.top_radius = static_cast<float>(o.params.top_radius);
+    shape.open = o.params.open;
+    const auto [lo, hi] = *unit_box(shape, {});
+    std::array<float, 6> corners{};
+    for (int axis = 0; axis < 3; ++axis) {
+        const bool flat = lo[axis] == hi[axis];
+        corners[axis] = flat ? -0.01f : static_cast<float>(lo[axis]);
+        corners[3 + axis] = flat ? 0.01f : static_cast<float>(hi[axis]);
+    }
+    return corners;
 }
 
 } // namespace
@@ -328,8 +347,9 @@ ItemBuffer::ItemBuffer() : impl_(std::make_unique<Impl>()) {
 
 ItemBuffer::~ItemBuffer() = default;
 
-// One pass over the objects, sorting each into planes, proxies, shared meshes and instanced
-// tessellations (65 lines: the cases share the geometry maps built along the way).
+// One pass over the objects, sorting each by its shape's RasterAs into analytic proxies, shared
+// meshes, proxy boxes and instanced tessellations (the cases share the geometry maps built along
+// the way).
 void ItemBuffer::upload(const World& world, RasterMode mode, int tessellation) {
     Impl& gl = *impl_;
     for (const auto& g : gl.geometries) Impl::release(g);
@@ -338,16 +358,18 @@ void ItemBuffer::upload(const World& world, RasterMode mode, int tessellation) {
     gl.instances_of.clear();
     std::map<std::uint32_t, std::size_t> mesh_geometry; // each mesh uploaded once
     deviations_.assign(world.objects().size(), 0.0f);
-    // One tessellation per distinct shape (cones: per top radius; open or capped), shared by every
-    // object using it.
+    // One proxy box per distinct object-space box, and one tessellation per distinct shape and
+    // parameters (cones: per top radius; open or capped), shared by every object using it.
+    std::map<std::array<float, 6>, std::size_t> proxies;
     std::map<std::tuple<ShapeKind, float, bool>, std::pair<std::size_t, float>> shared;
     for (std::uint32_t i = 0; i < world.objects().size(); ++i) {
         const Object& o = world.objects()[i];
-        if (o.shape == ShapeKind::plane) {
+        const ShapeTraits& traits = shape_traits(o.shape);
+        if (traits.raster == RasterAs::analytic) {
             gl.items.push_back({i, 0, true, true});
             continue;
         }
-        if (o.shape == ShapeKind::triangle || o.shape == ShapeKind::mesh) {
+        if (traits.raster == RasterAs::triangles) {
             auto [it, added] = mesh_geometry.emplace(o.mesh, 0);
             if (added) {
                 const Mesh& mesh = world.mesh(o.mesh);
@@ -356,33 +378,25 @@ void ItemBuffer::upload(const World& world, RasterMode mode, int tessellation) {
             gl.add_instance(it->second, i);
             continue;
         }
-        if (mode == RasterMode::proxy) {
-            // The primitive's object-space bounds as a box (a disk gets a thin one).
-            const float r = o.shape == ShapeKind::cone ? std::max(1.0f, o.top_radius) : 1.0f;
-            const Vec3 lo = o.shape == ShapeKind::sphere || o.shape == ShapeKind::box ? Vec3(-1.0f)
-                            : o.shape == ShapeKind::disk ? Vec3(-1.0f, -0.01f, -1.0f)
-                                                         : Vec3(-r, 0.0f, -r);
-            const Vec3 hi = o.shape == ShapeKind::disk ? Vec3(1.0f, 0.01f, 1.0f) : Vec3(r, 1.0f, r);
-            const auto key = std::make_tuple(
-                ShapeKind::box, o.shape == ShapeKind::box ? -1.0f : float(o.shape) * 1e3f + r,
-                false);
-            auto it = shared.find(key);
-            if (it == shared.end()) {
-                Tessellation box = tessellate(ShapeKind::box, 0, 4);
-                for (Vec3& v : box.vertices) v = lo + (v + 1.0f) * 0.5f * (hi - lo);
-                it = shared
-                         .emplace(key, std::make_pair(gl.add_geometry(box.vertices, box.triangles),
-                                                      0.0f))
-                         .first;
+        if (mode == RasterMode::proxy && traits.in_proxy_shader) {
+            const std::array<float, 6> box = proxy_box(o);
+            auto [it, added] = proxies.emplace(box, 0);
+            if (added) {
+                const Vec3 lo(box[0], box[1], box[2]), hi(box[3], box[4], box[5]);
+                Tessellation unit = tessellate(ShapeKind::box, 0, 4);
+                for (Vec3& v : unit.vertices) v = lo + (v + 1.0f) * 0.5f * (hi - lo);
+                it->second = gl.add_geometry(unit.vertices, unit.triangles);
             }
-            gl.items.push_back({i, it->second.first, true, false});
+            gl.items.push_back({i, it->second, true, false});
             continue;
         }
-        const auto key =
-            std::make_tuple(o.shape, o.shape == ShapeKind::cone ? o.top_radius : 0.0f, o.open);
+        const ShapeKeys& keys = traits.keys;
+        const float top_radius = keys.top_radius ? float(o.params.top_radius) : 0.0f;
+        const bool open = keys.open && o.params.open;
+        const auto key = std::make_tuple(o.shape, top_radius, open);
         auto it = shared.find(key);
         if (it == shared.end()) {
-            const Tessellation t = tessellate(o.shape, o.top_radius, tessellation, o.open);
+            const Tessellation t = tessellate(o.shape, top_radius, tessellation, open);
             it = shared
                      .emplace(key, std::make_pair(gl.add_geometry(t.vertices, t.triangles),
                                                   t.max_deviation))
@@ -441,8 +455,8 @@ void ItemBuffer::Impl::draw_single(const World& world, const DrawItem& item, con
         const glm::mat4 inverse(to_mat4(o.transform.inverse_linear, o.transform.inverse_offset));
         glUniformMatrix4fv(uniform("world_to_object"), 1, GL_FALSE, glm::value_ptr(inverse));
         glUniform1i(uniform("shape"), static_cast<int>(o.shape));
-        glUniform1f(uniform("top_radius"), o.top_radius);
-        glUniform1i(uniform("open"), o.open);
+        glUniform1f(uniform("top_radius"), o.params.top_radius);
+        glUniform1i(uniform("open"), o.params.open);
         glUniform3fv(uniform("forward"), 1, glm::value_ptr(camera.forward()));
         const Vec3 right = camera.right_scaled(), up = camera.up_scaled();
         glUniform3fv(uniform("right_scaled"), 1, glm::value_ptr(right));

@@ -3,6 +3,7 @@
 // the format describes on several; every error names the file and the line of the token at fault.
 #include "trace/polygon.h"
 #include "trace/scene_loader.h"
+#include "trace/shapes/table.h"
 
 #include <cctype>
 #include <cmath>

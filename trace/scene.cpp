@@ -75,33 +75,6 @@ std::optional<std::string> why_unusable(const DMat4& m) {
     return std::nullopt;
 }
 
-std::optional<std::pair<DVec3, DVec3>> unit_box(const SceneObject& object,
-                                                const std::vector<TriangleMesh>& meshes) {
-    switch (object.shape) {
-    case ShapeKind::sphere:
-    case ShapeKind::box:
-        return std::pair{DVec3(-1.0), DVec3(1.0)};
-    case ShapeKind::disk:
-        return std::pair{DVec3(-1.0, 0.0, -1.0), DVec3(1.0, 0.0, 1.0)};
-    case ShapeKind::cylinder:
-        return std::pair{DVec3(-1.0, 0.0, -1.0), DVec3(1.0, 1.0, 1.0)};
-    case ShapeKind::cone: {
-        const double r = std::max(1.0, double(object.top_radius));
-        return std::pair{DVec3(-r, 0.0, -r), DVec3(r, 1.0, r)};
-    }
-    case ShapeKind::triangle:
-    case ShapeKind::mesh: {
-        DVec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
-        for (const glm::vec3& v : meshes[object.mesh].vertices)
-            lo = glm::min(lo, DVec3(v)), hi = glm::max(hi, DVec3(v));
-        return std::pair{lo, hi};
-    }
-    case ShapeKind::plane:
-        break;
-    }
-    return std::nullopt;
-}
-
 std::pair<DVec3, DVec3> transformed_box(const std::pair<DVec3, DVec3>& local, const DMat4& m) {
     const auto& [local_lo, local_hi] = local;
     DVec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());

@@ -24,14 +24,8 @@ using DMat4 = glm::dmat4;
 // finite in float (3.4e38) with room to spare.
 inline constexpr double kMaxCoordinate = 1e15;
 
-// The closed set of shapes (docs/ARCHITECTURE.md, "Conventions"; where each is handled: "Where to
-// add").
-enum class ShapeKind : std::uint8_t { sphere, plane, box, disk, cylinder, cone, triangle, mesh };
-
-template <> struct EnumNames<ShapeKind> {
-    static constexpr auto names =
-        name_table("sphere", "plane", "box", "disk", "cylinder", "cone", "triangle", "mesh");
-};
+// The closed set of shapes: defined, with its names, in trace/shapes/table.h.
+enum class ShapeKind : std::uint8_t;
 
 struct Camera {
     DVec3 eye{0.0, 0.0, 5.0};
@@ -64,7 +58,7 @@ struct TriangleMesh {
 };
 
 struct SceneObject {
-    ShapeKind shape = ShapeKind::sphere;
+    ShapeKind shape{}; // the first in trace/shapes/table.h: sphere
     std::uint32_t material = 0;
     DMat4 transform{1.0};    // object → world, composed from the scene's transform list
     float top_radius = 0.0f; // cones only
@@ -106,10 +100,6 @@ inline constexpr double kMaxConditionNumber = 1e4;
 // Why M cannot place an object (singular, non-affine, out of float's range or too ill-conditioned
 // to invert in float), or nothing when it can.
 std::optional<std::string> why_unusable(const DMat4& m);
-
-// Object-space box [lo, hi] of an object's primitive; nothing for planes, which have none.
-std::optional<std::pair<DVec3, DVec3>> unit_box(const SceneObject& object,
-                                                const std::vector<TriangleMesh>& meshes);
 
 // The box M·[lo, hi] in double: the eight corners mapped, their smallest and largest coordinates.
 std::pair<DVec3, DVec3> transformed_box(const std::pair<DVec3, DVec3>& local, const DMat4& m);

@@ -1,6 +1,7 @@
 #include "trace/scene_loader.h"
 
 #include "trace/obj_loader.h"
+#include "trace/shapes/table.h"
 
 #include <nlohmann/json.hpp>
 
@@ -47,6 +48,20 @@ std::string type_name(const json& v) {
 template <class Words> std::string join(const Words& words) {
     std::string out;
     for (std::string_view w : words) out += (out.empty() ? "" : ", ") + std::string(w);
+    return out;
+}
+
+// The shapes that take an optional key, for its error message: "cylinders and cones".
+std::string shapes_taking(bool ShapeKeys::*key) {
+    std::vector<std::string> plural;
+    for (std::size_t i = 0; i < kShapeTraits.size(); ++i) {
+        if (!(kShapeTraits[i].keys.*key)) continue;
+        const std::string name(EnumNames<ShapeKind>::names[i]);
+        plural.push_back(name + (name.ends_with("sh") ? "es" : "s"));
+    }
+    std::string out;
+    for (std::size_t i = 0; i < plural.size(); ++i)
+        out += (i == 0 ? "" : i + 1 == plural.size() ? " and " : ", ") + plural[i];
     return out;
 }
 
@@ -280,6 +295,8 @@ class Loader {
         return m;
     }
 
+    // The vertices (and indices) of a shape that takes them: one triangle when it takes no
+    // indices.
     TriangleMesh mesh(const Node& node, ShapeKind shape) const {
         if (!has(node, "vertices")) fail(node, std::string(name_of(shape)) + " needs vertices");
         const Node vertices = array(node.child("vertices"));
@@ -291,7 +308,7 @@ class Loader {
             const DVec3 v = point(vertices[i]);
             mesh.vertices.push_back(glm::vec3(v));
         }
-        if (shape == ShapeKind::triangle) {
+        if (!shape_traits(shape).keys.indices) {
             if (mesh.vertices.size() != 3) fail(vertices, "a triangle has exactly 3 vertices");
             const glm::vec3 normal = glm::cross(mesh.vertices[1] - mesh.vertices[0],
                                                 mesh.vertices[2] - mesh.vertices[0]);
@@ -342,19 +359,18 @@ class Loader {
             fail(shape_node, "unknown shape '" + shape + "'");
         SceneObject o;
         o.shape = static_cast<ShapeKind>(it - EnumNames<ShapeKind>::names.begin());
-        const bool triangles = o.shape == ShapeKind::triangle || o.shape == ShapeKind::mesh;
-        if (has(node, "top_radius") && o.shape != ShapeKind::cone)
-            fail(node.child("top_radius"), "only cones have a top_radius");
-        if (has(node, "open") && o.shape != ShapeKind::cylinder && o.shape != ShapeKind::cone)
-            fail(node.child("open"), "only cylinders and cones can be open");
-        if (has(node, "vertices") && !triangles)
-            fail(node.child("vertices"), "only triangles and meshes have vertices");
-        if (has(node, "indices") && o.shape != ShapeKind::mesh)
-            fail(node.child("indices"), "only meshes have indices");
+        const ShapeKeys& keys = shape_traits(o.shape).keys;
+        const auto only = [&](const char* key, bool ShapeKeys::*takes, const std::string& what) {
+            if (has(node, key) && !(keys.*takes))
+                fail(node.child(key), "only " + shapes_taking(takes) + " " + what);
+        };
+        only("top_radius", &ShapeKeys::top_radius, "have a top_radius");
+        only("open", &ShapeKeys::open, "can be open");
+        only("vertices", &ShapeKeys::vertices, "have vertices");
+        only("indices", &ShapeKeys::indices, "have indices");
+        only("file", &ShapeKeys::file, "are read from files");
         const bool from_file = has(node, "file");
         if (from_file) {
-            if (o.shape != ShapeKind::mesh)
-                fail(node.child("file"), "only meshes are read from files");
             if (has(node, "vertices") || has(node, "indices"))
                 fail(node.child("file"), "a mesh has either a file or vertices and indices");
         }
@@ -386,7 +402,7 @@ class Loader {
                 placed.push_back(part);
             }
         } else {
-            if (triangles) {
+            if (keys.vertices) {
                 o.mesh = static_cast<std::uint32_t>(scene.meshes.size());
                 scene.meshes.push_back(mesh(node, o.shape));
             }
@@ -399,8 +415,8 @@ class Loader {
     // Positions are bounded so that their squares stay finite in float; so must every point of
     // a placed object (a mesh vertex of 1e15 scaled by 1e15 is not a position).
     void check_reach(const Node& node, const SceneObject& o, const Scene& scene) const {
-        if (o.shape != ShapeKind::plane) {
-            const auto [lo, hi] = transformed_box(*unit_box(o, scene.meshes), o.transform);
+        if (const std::optional<ObjectBox> box = unit_box(o, scene.meshes)) {
+            const auto [lo, hi] = transformed_box(*box, o.transform);
             const DVec3 far = glm::max(glm::abs(lo), glm::abs(hi));
             const double reach = std::max({far.x, far.y, far.z});
             if (reach > kMaxCoordinate) {

@@ -1,10 +1,5 @@
 #include "trace/world.h"
 
-#include "trace/shapes/box.h"
-#include "trace/shapes/cone.h"
-#include "trace/shapes/cylinder.h"
-#include "trace/shapes/plane.h"
-#include "trace/shapes/sphere.h"
 #include "trace/stopwatch.h"
 
 #include <cmath>
@@ -41,10 +36,12 @@ World::World(const Scene& scene, std::shared_ptr<const SceneGeometry> geometry, 
     objects_.reserve(scene.objects.size());
     for (const SceneObject& o : scene.objects) {
         const DMat4 m = to_camera * o.transform;
-        const bool bounded = o.shape != ShapeKind::plane;
-        objects_.push_back({o.shape, make_transform(m), o.material, o.top_radius, o.open, o.mesh,
-                            bounded,
-                            bounded ? world_bounds(*unit_box(o, scene.meshes), m) : Bounds{}});
+        const std::optional<ObjectBox> box = unit_box(o, scene.meshes);
+        const ShapeParams params{o.top_radius, o.open,
+                                 shape_traits(o.shape).keys.vertices ? &geometry_->meshes[o.mesh]
+                                                                     : nullptr};
+        objects_.push_back({o.shape, make_transform(m), o.material, params, o.mesh, box.has_value(),
+                            box ? world_bounds(*box, m) : Bounds{}});
     }
     for (const PointLight& light : scene.lights)
         lights_.push_back({Vec3(light.position - scene.camera.eye), Vec3(light.color)});
@@ -103,24 +100,9 @@ template <class Counters>
 ShapeHit World::intersect_shape(const Object& object, const Ray& world_ray, Real t_max,
                                 Counters& counters) const {
     const Ray ray = object.transform.to_object(world_ray);
-    switch (object.shape) {
-    case ShapeKind::sphere:
-        return intersect_sphere(ray, t_max);
-    case ShapeKind::plane:
-        return intersect_plane(ray, t_max);
-    case ShapeKind::box:
-        return intersect_box(ray, t_max);
-    case ShapeKind::disk:
-        return intersect_disk(ray, t_max);
-    case ShapeKind::cylinder:
-        return intersect_cylinder(ray, t_max, object.open);
-    case ShapeKind::cone:
-        return intersect_cone(ray, object.top_radius, t_max, object.open);
-    case ShapeKind::triangle:
-    case ShapeKind::mesh:
-        return intersect_mesh(geometry_->meshes[object.mesh], ray, t_max, counters);
-    }
-    return {};
+    return visit_shape(object.shape, [&]<class S>(S) {
+        return S::intersect(object.params, ray, t_max, counters);
+    });
 }
 
 // Ties: on equal t the lower object index wins, whatever order a structure visits objects in,
@@ -200,29 +182,8 @@ SurfacePoint World::surface(const Ray& ray, const Hit& hit) const {
     const Transform& m = object.transform;
     const Ray local = m.to_object(ray);
     const Vec3 p = local.origin + hit.t * local.direction;
-    SurfaceSample s;
-    switch (object.shape) {
-    case ShapeKind::sphere:
-        s = sphere_surface(p);
-        break;
-    case ShapeKind::plane:
-    case ShapeKind::disk:
-        s = plane_surface(p);
-        break;
-    case ShapeKind::box:
-        s = box_surface(p, hit.primitive);
-        break;
-    case ShapeKind::cylinder:
-        s = cylinder_surface(p, hit.primitive);
-        break;
-    case ShapeKind::cone:
-        s = cone_surface(p, hit.primitive, object.top_radius);
-        break;
-    case ShapeKind::triangle:
-    case ShapeKind::mesh:
-        s = mesh_surface(geometry_->meshes[object.mesh], hit.primitive, hit.u, hit.v);
-        break;
-    }
+    const SurfaceSample s =
+        visit_shape(object.shape, [&]<class S>(S) { return S::surface(object.params, p, hit); });
     Vec3 normal = m.normal_to_world(s.normal);
     const bool from_inside = glm::dot(normal, ray.direction) > 0;
     if (from_inside) normal = -normal;
@@ -240,9 +201,8 @@ SurfacePoint World::surface(const Ray& ray, const Hit& hit) const {
     // object instead of stepping off it. No offset is needed then, and none can be too large
     // for a small neighbour (a millimetre sphere on a kilometre floor, where the offset below
     // would be 2e-3).
-    const bool planar = object.shape == ShapeKind::plane || object.shape == ShapeKind::disk ||
-                        object.shape == ShapeKind::triangle;
-    if (planar || (object.shape != ShapeKind::mesh && !from_inside))
+    const ShapeTraits& traits = shape_traits(object.shape);
+    if (traits.planar || (traits.convex && !from_inside))
         return {m.point_to_world(s.point), normal, shading, 0.0_r, hit.object};
     // Spawn offset (Wächter & Binder, Ray Tracing Gems ch. 6; pbrt-v4's OffsetRayOrigin): a new
     // ray from this point is intersected with this object after mapping back by M⁻¹, so it must

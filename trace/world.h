@@ -6,7 +6,7 @@
 #include "trace/accel/accel.h"
 #include "trace/camera.h"
 #include "trace/scene.h"
-#include "trace/shapes/mesh.h"
+#include "trace/shapes/table.h"
 #include "trace/transform.h"
 
 #include <tbb/enumerable_thread_specific.h>
@@ -22,11 +22,10 @@ struct Object {
     ShapeKind shape;
     Transform transform; // object → camera-relative world
     std::uint32_t material;
-    Real top_radius;
-    bool open; // cylinders and cones without caps
-    std::uint32_t mesh;
-    bool bounded;  // false for planes
-    Bounds bounds; // camera-relative world bounds, conservative
+    ShapeParams params; // what the shape's routines read (trace/shapes/table.h)
+    std::uint32_t mesh; // index into the scene's meshes, for triangles and meshes
+    bool bounded;       // false for planes
+    Bounds bounds;      // camera-relative world bounds, conservative
 };
 
 // A material as shading reads it (scene colours in the tracer's precision).

@@ -45,5 +45,32 @@ inline SurfaceSample box_surface(Vec3 p, std::uint32_t face) {
     return {p, normal, error};
 }
 
+// The box in the shape table (trace/shapes/table.h).
+struct Box {
+    static constexpr std::string_view name = "box";
+    static constexpr ShapeTraits traits{.convex = true, .keys = {}};
+
+    static ObjectBox bounds(const SceneObject&, const std::vector<TriangleMesh>&) {
+        return {DVec3(-1.0), DVec3(1.0)};
+    }
+    template <class Counters>
+    static ShapeHit intersect(const ShapeParams&, const Ray& ray, Real t_max, Counters&) {
+        return intersect_box(ray, t_max);
+    }
+    static SurfaceSample surface(const ShapeParams&, Vec3 p, const Hit& hit) {
+        return box_surface(p, hit.primitive);
+    }
+    // Its own 12 triangles: exact.
+    static Tessellation tessellate(float, bool, int) {
+        TessellationBuilder b;
+        for (int corner = 0; corner < 8; ++corner)
+            b.vertex({corner & 1 ? 1.0 : -1.0, corner & 2 ? 1.0 : -1.0, corner & 4 ? 1.0 : -1.0});
+        const std::uint32_t faces[6][4] = {{0, 2, 6, 4}, {1, 5, 7, 3}, {0, 4, 5, 1},
+                                           {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 6, 7, 5}};
+        for (const auto& f : faces) b.quad(f[0], f[1], f[2], f[3]);
+        return b.mesh;
+    }
+};
+
 } // namespace GLINT_PRECISION
 } // namespace glint

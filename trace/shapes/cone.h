@@ -60,5 +60,26 @@ inline SurfaceSample cone_surface(Vec3 p, std::uint32_t part, Real top_radius) {
     return {on_side, normal, error};
 }
 
+// The cone in the shape table (trace/shapes/table.h).
+struct Cone {
+    static constexpr std::string_view name = "cone";
+    static constexpr ShapeTraits traits{.convex = true, .keys = {.top_radius = true, .open = true}};
+
+    static ObjectBox bounds(const SceneObject& object, const std::vector<TriangleMesh>&) {
+        const double r = std::max(1.0, double(object.top_radius));
+        return {DVec3(-r, 0.0, -r), DVec3(r, 1.0, r)};
+    }
+    template <class Counters>
+    static ShapeHit intersect(const ShapeParams& shape, const Ray& ray, Real t_max, Counters&) {
+        return intersect_cone(ray, shape.top_radius, t_max, shape.open);
+    }
+    static SurfaceSample surface(const ShapeParams& shape, Vec3 p, const Hit& hit) {
+        return cone_surface(p, hit.primitive, shape.top_radius);
+    }
+    static Tessellation tessellate(float top_radius, bool open, int n) {
+        return tessellate_frustum(top_radius, open, n);
+    }
+};
+
 } // namespace GLINT_PRECISION
 } // namespace glint

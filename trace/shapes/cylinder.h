@@ -60,5 +60,44 @@ inline SurfaceSample cylinder_surface(Vec3 p, std::uint32_t part) {
     return {on_side, {on_side.x, 0.0_r, on_side.z}, gamma(5) * glm::abs(on_side)};
 }
 
+// The tessellation of a cylinder (top = 1) or cone: circumscribed rings at y = 0 and 1 (an apex
+// when top = 0) joined by tangent side faces, and the caps unless `open`.
+inline Tessellation tessellate_frustum(double top, bool open, int n) {
+    TessellationBuilder b;
+    const auto bottom = b.ring(n, 0, 1 * (1 + 1e-6));
+    if (top > 0) {
+        const auto upper = b.ring(n, 1, top * (1 + 1e-6));
+        for (int i = 0; i < n; ++i)
+            b.quad(bottom[i], upper[i], upper[(i + 1) % n], bottom[(i + 1) % n]);
+        if (!open) b.cap(upper, 1);
+    } else {
+        const std::uint32_t apex = b.vertex({0, 1, 0});
+        for (int i = 0; i < n; ++i) b.triangle(bottom[i], apex, bottom[(i + 1) % n]);
+    }
+    if (!open) b.cap(bottom, 0);
+    b.mesh.max_deviation = static_cast<float>((circumscribed_reach(n) - 1) * std::max(1.0, top));
+    return b.mesh;
+}
+
+// The cylinder in the shape table (trace/shapes/table.h).
+struct Cylinder {
+    static constexpr std::string_view name = "cylinder";
+    static constexpr ShapeTraits traits{.convex = true, .keys = {.open = true}};
+
+    static ObjectBox bounds(const SceneObject&, const std::vector<TriangleMesh>&) {
+        return {DVec3(-1.0, 0.0, -1.0), DVec3(1.0, 1.0, 1.0)};
+    }
+    template <class Counters>
+    static ShapeHit intersect(const ShapeParams& shape, const Ray& ray, Real t_max, Counters&) {
+        return intersect_cylinder(ray, t_max, shape.open);
+    }
+    static SurfaceSample surface(const ShapeParams&, Vec3 p, const Hit& hit) {
+        return cylinder_surface(p, hit.primitive);
+    }
+    static Tessellation tessellate(float, bool open, int n) {
+        return tessellate_frustum(1.0, open, n);
+    }
+};
+
 } // namespace GLINT_PRECISION
 } // namespace glint

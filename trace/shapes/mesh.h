@@ -6,6 +6,7 @@
 #include "trace/shapes/shape.h"
 
 #include <array>
+#include <limits>
 #include <vector>
 
 namespace glint {
@@ -145,6 +146,35 @@ inline SurfaceSample mesh_surface(const Mesh& mesh, std::uint32_t triangle, Real
         b0 * mesh.normals[tri.x] + u * mesh.normals[tri.y] + v * mesh.normals[tri.z];
     return {point, facet, error, shading};
 }
+
+// Triangles and meshes in the shape table (trace/shapes/table.h): a triangle is a mesh of one
+// triangle, given by its 3 vertices.
+struct MeshShape {
+    static constexpr std::string_view name = "mesh";
+    static constexpr ShapeTraits traits{.raster = RasterAs::triangles,
+                                        .keys = {.vertices = true, .indices = true, .file = true}};
+
+    static ObjectBox bounds(const SceneObject& object, const std::vector<TriangleMesh>& meshes) {
+        DVec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+        for (const glm::vec3& v : meshes[object.mesh].vertices)
+            lo = glm::min(lo, DVec3(v)), hi = glm::max(hi, DVec3(v));
+        return {lo, hi};
+    }
+    template <class Counters>
+    static ShapeHit intersect(const ShapeParams& shape, const Ray& ray, Real t_max,
+                              Counters& counters) {
+        return intersect_mesh(*shape.mesh, ray, t_max, counters);
+    }
+    static SurfaceSample surface(const ShapeParams& shape, Vec3, const Hit& hit) {
+        return mesh_surface(*shape.mesh, hit.primitive, hit.u, hit.v);
+    }
+};
+
+struct Triangle : MeshShape {
+    static constexpr std::string_view name = "triangle";
+    static constexpr ShapeTraits traits{
+        .convex = true, .planar = true, .raster = RasterAs::triangles, .keys = {.vertices = true}};
+};
 
 } // namespace GLINT_PRECISION
 } // namespace glint

@@ -29,5 +29,45 @@ inline SurfaceSample plane_surface(Vec3 p) {
             gamma(3) * Vec3(std::abs(p.x), 0.0_r, std::abs(p.z))};
 }
 
+// The plane and the disk in the shape table (trace/shapes/table.h).
+struct Plane {
+    static constexpr std::string_view name = "plane";
+    static constexpr ShapeTraits traits{.planar = true, .raster = RasterAs::analytic, .keys = {}};
+
+    // Unbounded: tested by every ray, outside any structure.
+    static std::optional<ObjectBox> bounds(const SceneObject&, const std::vector<TriangleMesh>&) {
+        return std::nullopt;
+    }
+    template <class Counters>
+    static ShapeHit intersect(const ShapeParams&, const Ray& ray, Real t_max, Counters&) {
+        return intersect_plane(ray, t_max);
+    }
+    static SurfaceSample surface(const ShapeParams&, Vec3 p, const Hit&) {
+        return plane_surface(p);
+    }
+};
+
+struct Disk {
+    static constexpr std::string_view name = "disk";
+    static constexpr ShapeTraits traits{.planar = true, .keys = {}};
+
+    static ObjectBox bounds(const SceneObject&, const std::vector<TriangleMesh>&) {
+        return {DVec3(-1.0, 0.0, -1.0), DVec3(1.0, 0.0, 1.0)};
+    }
+    template <class Counters>
+    static ShapeHit intersect(const ShapeParams&, const Ray& ray, Real t_max, Counters&) {
+        return intersect_disk(ray, t_max);
+    }
+    static SurfaceSample surface(const ShapeParams&, Vec3 p, const Hit&) {
+        return plane_surface(p);
+    }
+    static Tessellation tessellate(float, bool, int n) {
+        TessellationBuilder b;
+        b.cap(b.ring(n, 0, 1 * (1 + 1e-6)), 0);
+        b.mesh.max_deviation = static_cast<float>(circumscribed_reach(n) - 1);
+        return b.mesh;
+    }
+};
+
 } // namespace GLINT_PRECISION
 } // namespace glint

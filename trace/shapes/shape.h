@@ -1,12 +1,64 @@
 // What every unit primitive answers: where a ray first crosses it (object space), and the
-// surface there (point projected back onto the surface, outward normal, error bound).
+// surface there (point projected back onto the surface, outward normal, error bound); and the
+// facts about a shape that the loaders, the World and the item buffer read from its type
+// (trace/shapes/table.h).
 #pragma once
 
 #include "trace/math.h"
 #include "trace/ray.h"
+#include "trace/scene.h"
+#include "trace/shapes/tessellation.h"
+
+#include <algorithm>
+#include <optional>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 namespace glint {
+
+// Object-space [lo, hi], in double (the scene's precision).
+using ObjectBox = std::pair<DVec3, DVec3>;
+
+// How the item buffer draws a shape (raster/item_buffer.cpp).
+enum class RasterAs : std::uint8_t {
+    tessellated, // its `tessellate` (tessellated modes), or its proxy box (proxy mode)
+    analytic,    // always its exact intersection in shaders/item_proxy.frag (unbounded shapes)
+    triangles,   // its own mesh, exact as it is
+};
+
+// The optional keys of a scene file's object that a shape accepts (docs/SCENES.md).
+struct ShapeKeys {
+    bool top_radius = false;
+    bool open = false;
+    bool vertices = false; // with no `indices` as well: the shape is one triangle of 3 vertices
+    bool indices = false;
+    bool file = false; // an OBJ file
+};
+
+struct ShapeTraits {
+    // A ray leaving the surface on the outward side cannot meet the shape again (the spawn rule,
+    // World::surface)...
+    bool convex = false;
+    // ... nor on either side.
+    bool planar = false;
+    RasterAs raster = RasterAs::tessellated;
+    // Whether shaders/item_proxy.frag intersects it exactly; proxy mode draws the tessellation
+    // of a tessellated shape that it does not.
+    bool in_proxy_shader = true;
+    ShapeKeys keys;
+};
+
 inline namespace GLINT_PRECISION {
+
+struct Mesh;
+
+// What a shape's intersection and surface read of their object besides the ray.
+struct ShapeParams {
+    Real top_radius = 0;        // cones
+    bool open = false;          // cylinders and cones without caps
+    const Mesh* mesh = nullptr; // triangles and meshes
+};
 
 struct ShapeHit {
     Real t = kInfinity;
