@@ -8,10 +8,13 @@
 #include "trace/shapes/mesh.h"
 #include "trace/shapes/plane.h"
 #include "trace/shapes/sphere.h"
+#include "trace/shapes/table.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
+#include <string>
 
 namespace glint {
 namespace {
@@ -209,6 +212,73 @@ TEST(TransformedShapes, ClosestOfSeveralObjectsWinsAndTiesGoToTheLowerIndex) {
     EXPECT_EQ(h.object, 1u);
     EXPECT_NEAR(h.t, 4.0f, kT);
 }
+
+// What each shape's traits (trace/shapes/table.h) claim, held to its geometry through the
+// World's dispatch: every hit lies in the shape's bounds, and where the spawn rule trusts
+// convexity or planarity (SurfacePoint::skip), no ray leaving on the normal's side meets the
+// shape again. The leaving rays start 1e-4 off the surface, far above float's rounding at these
+// sizes, so a hit would be another part of the shape, not the same point found again.
+class ShapeTraitsTest : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(ShapeTraitsTest, HitsLieInTheBoundsAndSkippedShapesCannotBeMetAgain) {
+    const World world(scene_at_origin(std::string("[") + GetParam() + "]"));
+    const Object& object = world.objects()[0];
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(-1, 1);
+    const auto random_unit = [&] {
+        for (;;) {
+            const Vec3 v(u(rng), u(rng), u(rng));
+            if (glm::dot(v, v) > 1e-2f && glm::dot(v, v) <= 1) return glm::normalize(v);
+        }
+    };
+    int hits = 0, skips = 0;
+    for (int k = 0; k < 400; ++k) {
+        const Vec3 origin = 4.0f * random_unit();
+        const Ray ray{origin, Vec3(u(rng), u(rng), u(rng)) - origin};
+        const Hit hit = world.intersect(ray);
+        if (!hit.found()) continue;
+        ++hits;
+        const SurfacePoint s = world.surface(ray, hit);
+        if (object.bounded) {
+            EXPECT_TRUE(glm::all(glm::greaterThanEqual(s.position, object.bounds.lo - 1e-5f)));
+            EXPECT_TRUE(glm::all(glm::lessThanEqual(s.position, object.bounds.hi + 1e-5f)));
+        }
+        if (s.skip != hit.object) continue;
+        ++skips;
+        for (int j = 0; j < 8; ++j) {
+            Vec3 d = random_unit();
+            if (glm::dot(d, s.normal) < 0) d = -d;
+            const Hit again = world.intersect_one(0, {s.position + 1e-4f * s.normal, d});
+            EXPECT_FALSE(again.found())
+                << "left " << s.position.x << ", " << s.position.y << ", " << s.position.z
+                << " along " << d.x << ", " << d.y << ", " << d.z << ", met again at t " << again.t;
+        }
+    }
+    EXPECT_GT(hits, 50);
+    const ShapeTraits& traits = shape_traits(object.shape);
+    if (traits.planar || traits.convex) {
+        EXPECT_GT(skips, 0); // the claim was put to the test
+    } else {
+        EXPECT_EQ(skips, 0);
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    EveryShape, ShapeTraitsTest,
+    ::testing::Values(
+        R"({"shape": "sphere"})", R"({"shape": "plane"})", R"({"shape": "box"})",
+        R"({"shape": "disk"})", R"({"shape": "cylinder"})",
+        R"({"shape": "cylinder", "open": true})", R"({"shape": "cone", "top_radius": 0.5})",
+        R"({"shape": "cone", "top_radius": 2})", R"({"shape": "cone"})",
+        R"({"shape": "cone", "top_radius": 0.5, "open": true})",
+        R"({"shape": "triangle", "vertices": [[-1, -1, 0], [1, -1, 0], [0, 1, 0.5]]})",
+        // Two facing quads: not convex, and a ray leaving one can meet the other.
+        R"({"shape": "mesh", "vertices": [[-1, -1, -1], [1, -1, -1], [1, 1, -1], [-1, 1, -1],
+            [-1, -1, 1], [1, -1, 1], [1, 1, 1], [-1, 1, 1]],
+            "indices": [0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6]})"),
+    [](const ::testing::TestParamInfo<const char*>& info) {
+        return "shape_" + std::to_string(info.index);
+    });
 
 } // namespace
 } // namespace glint
