@@ -73,7 +73,10 @@ nlohmann::ordered_json stats_json(const RenderReport& r) {
         {"min_reflectivity", scene.render.min_reflectivity},
         {"seconds", {{"load", r.load_seconds}, {"prepare", r.prepare_seconds}}},
         {"rays",
-         {{"primary", rays.primary}, {"shadow", rays.shadow}, {"reflection", rays.reflection}}},
+         {{"primary", rays.primary},
+          {"shadow", rays.shadow},
+          {"reflection", rays.reflection},
+          {"transmission", rays.transmission}}},
         {"cutoff",
          {{"bound_max_255", r.cutoff.max},
           {"pixels_over_1_255", r.cutoff.pixels_over_one},
@@ -83,10 +86,11 @@ nlohmann::ordered_json stats_json(const RenderReport& r) {
     seconds.update(phase_seconds_json(t));
     seconds["write"] = r.write_seconds;
     seconds["total"] = r.total_seconds;
-    // Per ray: over every query the tracer made (primary, shadow and reflection rays, and in
-    // hybrid mode the resolve's exact-interval queries, counted with the primary rays).
+    // Per ray: over every query the tracer made (primary, shadow, reflected and transmitted
+    // rays, and in hybrid mode the resolve's exact-interval queries, counted with the primary
+    // rays).
     const TraversalCounters counts = r.world.traversal_counts();
-    const double queries = static_cast<double>(rays.primary + rays.shadow + rays.reflection);
+    const double queries = static_cast<double>(rays.total());
     const Accelerator& accel = r.world.accelerator();
     stats["accel"] = {
         {"kind", name_of(accel.kind())},
@@ -123,17 +127,20 @@ void print_report(const RenderReport& r) {
                 r.args.frame.describe().c_str(),
                 std::string(name_of(r.world.accelerator().kind())).c_str(), r.threads,
                 r.total_seconds, r.frame.times.total());
-    std::printf("rays: %llu primary, %llu shadow, %llu reflection\n",
+    std::printf("rays: %llu primary, %llu shadow, %llu reflection",
                 static_cast<unsigned long long>(rays.primary),
                 static_cast<unsigned long long>(rays.shadow),
                 static_cast<unsigned long long>(rays.reflection));
+    if (rays.transmission > 0)
+        std::printf(", %llu transmission", static_cast<unsigned long long>(rays.transmission));
+    std::printf("\n");
     if (r.cutoff.largest_omitted_weight == 0)
         std::printf("reflection cut-off: no reflection ray omitted\n");
     else
         // A worst case from the brightest the scene could be (trace/cutoff.h), not a measured
         // error: said so, since a large bound on a bright mirror scene is usual, not an alarm.
-        std::printf("reflection cut-off (max depth %d, min reflectivity %g): reflections not "
-                    "followed could make %llu pixels brighter by more than 1/255, none by more "
+        std::printf("reflection cut-off (max depth %d, min reflectivity %g): secondary rays "
+                    "not followed could make %llu pixels brighter by more than 1/255, none by more "
                     "than %d/255 (a worst-case bound, not a measured error; heaviest omitted path "
                     "weight %.3g)\n",
                     scene.render.max_depth, static_cast<double>(scene.render.min_reflectivity),

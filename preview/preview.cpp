@@ -381,7 +381,7 @@ void Preview::update_title(bool force) {
         if (job_->finished())
             std::snprintf(progress, sizeof progress, "%dx%d traced in %.2f s, %.2f M rays",
                           job_->width(), job_->height(), job_->seconds(),
-                          static_cast<double>(rays.primary + rays.shadow + rays.reflection) / 1e6);
+                          static_cast<double>(rays.total()) / 1e6);
         else
             std::snprintf(progress, sizeof progress, "%dx%d tracing %d%%", job_->width(),
                           job_->height(), 100 * job_->tiles_done() / job_->tile_count());

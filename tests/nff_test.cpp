@@ -59,10 +59,16 @@ TEST(Nff, FillMapsKdKsAndShineAndUsesKsAsTheReflectivity) {
     EXPECT_TRUE(s.notes.empty());
 }
 
-TEST(Nff, TransmissionIsReportedAsIgnored) {
-    const Scene s = nff("f 1 1 1 0.5 0.5 3 0.8 1.5\ns 0 0 0 1\ns 2 0 0 1\n");
-    ASSERT_EQ(s.notes.size(), 1u);
-    EXPECT_NE(s.notes[0].find("2 entities transmit light"), std::string::npos) << s.notes[0];
+TEST(Nff, FillLinesGiveTransmissionAndTheIndexOfRefraction) {
+    const Scene s = nff("f 1 1 1 0.5 0.5 3 0.8 1.25\ns 0 0 0 1\nf 1 1 1 0.5 0.5 3 0 0\ns 2 0 0 1\n");
+    EXPECT_TRUE(s.notes.empty());
+    const Material& glass = s.materials[s.objects[0].material];
+    EXPECT_EQ(glass.transmission, 0.8f);
+    EXPECT_EQ(glass.ior, 1.25f);
+    // An opaque fill's index is not read (SPD writes 0 there) and leaves the default.
+    const Material& opaque = s.materials[s.objects[1].material];
+    EXPECT_EQ(opaque.transmission, 0.0f);
+    EXPECT_EQ(opaque.ior, 1.5f);
 }
 
 TEST(Nff, SphereIsTheUnitSphereScaledAndMoved) {
@@ -226,6 +232,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadNff{"cone of no length", kV + "c 0 0 0 1\n0 0 0 1\n",
                "3: a cone's base and apex must differ"},
         BadNff{"Ks over 1", kV + "f 1 1 1 0.5 2 3 0 1\n", "2: f's Ks must be between 0 and 1"},
+        BadNff{"T over 1", kV + "f 1 1 1 0.5 0.5 3 1.5 1\n", "2: f's T must be between 0 and 1"},
+        BadNff{"glass of index 0", kV + "f 1 1 1 0.5 0.5 3 0.9 0\n",
+               "2: f's index of refraction must be above 0"},
         BadNff{"negative colour", kV + "b -1 0 0\n", "2: b's background must be between 0"},
         BadNff{"view out of order", "v\nfrom 0 0 1\nup 0 1 0\n",
                "3: the view ('v', line 1) needs 'at' here, got 'up'"},

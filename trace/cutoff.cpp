@@ -12,10 +12,14 @@ glm::dvec3 ray_radiance_bound(const Scene& scene) {
     glm::dvec3 local = glm::dvec3(scene.background);
     double reflectivity = 0;
     for (const Material& m : scene.materials) {
-        const glm::dvec3 hit = glm::dvec3(m.ambient) * glm::dvec3(scene.ambient) +
-                               light_sum * (glm::dvec3(m.diffuse) + glm::dvec3(m.specular));
-        local = glm::max(local, hit);
-        reflectivity = std::max(reflectivity, double(m.reflectivity));
+        const auto hit = [&](glm::vec3 ambient, glm::vec3 diffuse) {
+            return glm::dvec3(ambient) * glm::dvec3(scene.ambient) +
+                   light_sum * (glm::dvec3(diffuse) + glm::dvec3(m.specular));
+        };
+        local = glm::max(local, hit(m.ambient, m.diffuse));
+        if (m.checker.size > 0) local = glm::max(local, hit(m.checker.ambient, m.checker.diffuse));
+        // A hit may cast both a reflected and a transmitted ray: their factors add.
+        reflectivity = std::max(reflectivity, double(m.reflectivity) + double(m.transmission));
     }
     if (reflectivity < 1) return local / (1 - reflectivity);
     constexpr double inf = std::numeric_limits<double>::infinity();

@@ -1,7 +1,8 @@
-// What max_depth and min_reflectivity may cost (adaptive depth): each pixel's reflection chain
-// stops at most once, and the ray not cast would have added its path weight times the radiance
-// it sees, which the scene bounds. So a render carries its own error bound against the
-// untruncated image, pixel by pixel, without casting a single extra ray.
+// What max_depth and min_reflectivity may cost (adaptive depth): each ray a pixel's ray tree did
+// not cast (a reflection or transmission) would have added its path weight times the radiance
+// it sees, which the scene bounds; the render sums those weights per pixel. So a render carries
+// its own error bound against the untruncated image, pixel by pixel, without casting a single
+// extra ray.
 #pragma once
 
 #include "trace/precision.h"
@@ -12,10 +13,12 @@
 
 namespace glint {
 
-// The most any ray can see, per channel, with reflections followed forever: every hit adds at
+// The most any ray can see, per channel, with secondary rays followed forever: every hit adds at
 // most L = ambient_m·ambient + Σ_lights colour·(diffuse_m + specular_m) (n·l ≤ 1, the specular
-// lobe ≤ 1), or the background; each bounce multiplies by at most r = the largest reflectivity,
-// so the radiance is at most L_max / (1 − r). Infinite when r = 1 (and anything is lit).
+// lobe ≤ 1, shadows through glass only dim it; a checker's colours count as the material's),
+// or the background; each hit's secondary rays weigh at most r = the largest reflectivity +
+// transmission, so the radiance is at most L_max / (1 − r). Infinite when r ≥ 1 (and anything
+// is lit).
 glm::dvec3 ray_radiance_bound(const Scene& scene);
 
 struct CutoffBound {

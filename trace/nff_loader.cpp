@@ -68,13 +68,6 @@ class NffReader {
             1.0f / std::sqrt(static_cast<float>(std::max<std::size_t>(1, scene_.lights.size())));
         for (PointLight& l : scene_.lights)
             if (l.color == glm::vec3(-1.0f)) l.color = glm::vec3(share);
-        if (transmitting_objects_ > 0) {
-            std::ostringstream note;
-            note << transmitting_objects_ << " entit" << (transmitting_objects_ == 1 ? "y" : "ies")
-                 << " transmit light (f's T > 0); glint does not refract yet, so they are drawn "
-                    "opaque";
-            scene_.notes.push_back(note.str());
-        }
         if (degenerate_polygons_ > 0)
             scene_.notes.push_back(std::to_string(degenerate_polygons_) +
                                    " polygon(s) of zero area left out");
@@ -222,16 +215,21 @@ class NffReader {
         const double kd = number_in(f, "Kd", 0, kMaxColour);
         const double ks = number_in(f, "Ks", 0, 1);
         const double shine = number_in(f, "shine", 0, 1e6);
-        transmits_ = number_in(f, "T", 0, 1) > 0;
-        number(f, "index of refraction");
+        const double transmission = number_in(f, "T", 0, 1);
+        const double ior = number(f, "index of refraction");
+        // Only a transmitting material's index matters (and must then be usable).
+        if (transmission > 0 && !(ior > 0 && ior <= 100))
+            fail(f.line, "f's index of refraction must be above 0 and at most 100 where T > 0");
         Material m;
+        m.transmission = static_cast<float>(transmission);
+        m.ior = transmission > 0 ? static_cast<float>(ior) : 1.5f;
         m.diffuse = rgb * static_cast<float>(kd);
         m.ambient = m.diffuse; // the scene's ambient light is 0: only glint's default matters
         m.specular = glm::vec3(static_cast<float>(ks));
         m.shininess = static_cast<float>(shine);
         m.reflectivity = static_cast<float>(ks); // as SPD's renderers: Ks is also the mirror
-        const auto key =
-            std::make_tuple(m.diffuse.x, m.diffuse.y, m.diffuse.z, m.specular.x, m.shininess);
+        const auto key = std::make_tuple(m.diffuse.x, m.diffuse.y, m.diffuse.z, m.specular.x,
+                                         m.shininess, m.transmission, m.ior);
         const auto [it, added] =
             materials_.emplace(key, static_cast<std::uint32_t>(scene_.materials.size()));
         if (added) {
@@ -244,7 +242,6 @@ class NffReader {
 
     void add(SceneObject o) {
         o.material = material_;
-        if (transmits_) ++transmitting_objects_;
         scene_.objects.push_back(o);
     }
 
@@ -319,7 +316,6 @@ class NffReader {
                 mesh.normals.push_back(glm::vec3(glm::length(nv) > 0 ? glm::normalize(nv) : facet));
         }
         for (const glm::uvec3& t : triangles) mesh.triangles.push_back(t + first);
-        if (transmits_) ++transmitting_objects_;
     }
 
     void flush_meshes() {
@@ -341,10 +337,9 @@ class NffReader {
     int line_ = 1;
     int last_line_ = 1; // of the last token read
     Scene scene_;
-    std::map<std::tuple<float, float, float, float, float>, std::uint32_t> materials_;
+    std::map<std::tuple<float, float, float, float, float, float, float>, std::uint32_t> materials_;
     std::uint32_t material_ = 0;
-    bool transmits_ = false;
-    std::size_t transmitting_objects_ = 0, degenerate_polygons_ = 0;
+    std::size_t degenerate_polygons_ = 0;
     TriangleMesh flat_, smooth_; // the current material's polygons and patches
 };
 

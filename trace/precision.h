@@ -18,11 +18,14 @@ struct RayCounts {
     std::uint64_t primary = 0;
     std::uint64_t shadow = 0;
     std::uint64_t reflection = 0;
+    std::uint64_t transmission = 0; // refracted rays, and totally internally reflected ones
 
     RayCounts& operator+=(const RayCounts& other) {
         primary += other.primary, shadow += other.shadow, reflection += other.reflection;
+        transmission += other.transmission;
         return *this;
     }
+    std::uint64_t total() const { return primary + shadow + reflection + transmission; }
 };
 
 // The pixels of one render, whichever mode and precision made them; per pixel, row-major, top
@@ -30,9 +33,8 @@ struct RayCounts {
 struct RenderResult {
     Image image;
     RayCounts rays;
-    // The path weight of the reflection ray that max_depth or min_reflectivity kept from being
-    // cast, 0 where none was. Perfect reflection makes each pixel's path one chain, so a pixel
-    // omits at most one ray (trace/cutoff.h).
+    // The summed path weights of the reflected and transmitted rays that max_depth or
+    // min_reflectivity kept from being cast, 0 where none was (trace/cutoff.h).
     std::vector<float> omitted_weight;
     std::vector<std::uint32_t> ids; // the primary hit's object index + 1; 0 for background
 };

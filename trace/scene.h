@@ -41,12 +41,23 @@ struct PointLight {
     glm::vec3 color{1.0f};
 };
 
+// A checkerboard in object space (docs/SCENES.md): where the cell index is odd, its colours
+// replace the material's diffuse and ambient.
+struct Checker {
+    float size = 0.0f; // 0: no checker
+    glm::vec3 diffuse{0.0f};
+    glm::vec3 ambient{0.0f};
+};
+
 struct Material {
     glm::vec3 ambient{0.8f};
     glm::vec3 diffuse{0.8f};
     glm::vec3 specular{0.0f};
     float shininess = 32.0f;
     float reflectivity = 0.0f;
+    float transmission = 0.0f; // fraction of the transmitted ray's colour added
+    float ior = 1.5f;          // index of refraction, where transmission > 0
+    Checker checker;
 };
 
 // Triangles as given (counter-clockwise front), object space.
@@ -68,6 +79,8 @@ struct SceneObject {
 
 struct RenderSettings {
     int max_depth = 5;
+    // The smallest path weight (product of the reflectivities and transmissions along the path)
+    // for which a reflected or transmitted ray is still cast; the scene file's `min_weight`.
     float min_reflectivity = 0.01f;
 };
 

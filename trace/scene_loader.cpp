@@ -230,7 +230,8 @@ class Loader {
     }
 
     Material material(const Node& node) const {
-        expect_object(node, {"ambient", "diffuse", "specular", "shininess", "reflectivity"});
+        expect_object(node, {"ambient", "diffuse", "specular", "shininess", "reflectivity",
+                             "transmission", "ior", "checker"});
         Material m;
         if (has(node, "diffuse")) m.diffuse = colour(node.child("diffuse"));
         m.ambient = has(node, "ambient") ? colour(node.child("ambient")) : m.diffuse;
@@ -239,16 +240,43 @@ class Loader {
             m.shininess = static_cast<float>(number_in(node.child("shininess"), 0, 1e4));
         if (has(node, "reflectivity"))
             m.reflectivity = static_cast<float>(number_in(node.child("reflectivity"), 0, 1));
+        if (has(node, "transmission"))
+            m.transmission = static_cast<float>(number_in(node.child("transmission"), 0, 1));
+        if (has(node, "ior")) {
+            const Node ior = node.child("ior");
+            const double v = number(ior);
+            if (!(v > 0 && v <= 100)) fail(ior, "must be above 0 and at most 100");
+            m.ior = static_cast<float>(v);
+        }
+        if (has(node, "checker")) m.checker = checker(node.child("checker"));
         return m;
     }
 
+    Checker checker(const Node& node) const {
+        expect_object(node, {"size", "diffuse", "ambient"});
+        if (!has(node, "size")) fail(node, "a checker needs a size");
+        if (!has(node, "diffuse")) fail(node, "a checker needs a diffuse colour");
+        Checker c;
+        const double size = number(node.child("size"));
+        if (!(size > 0 && size <= kMaxCoordinate))
+            fail(node.child("size"), "must be above 0 and at most 1e15");
+        c.size = static_cast<float>(size);
+        c.diffuse = colour(node.child("diffuse"));
+        c.ambient = has(node, "ambient") ? colour(node.child("ambient")) : c.diffuse;
+        return c;
+    }
+
     RenderSettings render(const Node& node) const {
-        expect_object(node, {"max_depth", "min_reflectivity"});
+        expect_object(node, {"max_depth", "min_weight", "min_reflectivity"});
         RenderSettings r;
         if (has(node, "max_depth")) r.max_depth = integer_in(node.child("max_depth"), 0, kMaxDepth);
-        if (has(node, "min_reflectivity"))
-            r.min_reflectivity =
-                static_cast<float>(number_in(node.child("min_reflectivity"), 0, 1));
+        // min_reflectivity is the name from before transmission; both mean the same.
+        if (has(node, "min_weight") && has(node, "min_reflectivity"))
+            fail(node.child("min_reflectivity"),
+                 "give min_weight or min_reflectivity (its older name), not both");
+        for (const char* key : {"min_weight", "min_reflectivity"})
+            if (has(node, key))
+                r.min_reflectivity = static_cast<float>(number_in(node.child(key), 0, 1));
         return r;
     }
 

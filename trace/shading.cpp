@@ -11,42 +11,120 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, int depth, Real w
     return shade(world, ray, hit, world.surface(ray, hit), depth, weight, counts, omitted_weight);
 }
 
+namespace {
+
+// Shadow rays are followed through at most this many transmissive crossings; a light behind more
+// is taken as blocked (64 panes of glass pass at most 0.9⁶⁴ ≈ 1e-3 of it).
+constexpr int kMaxCrossings = 64;
+
+// Whether the checker's cell at object-space point q is odd (docs/SCENES.md): k = ⌊q.x/s⌋ +
+// ⌊q.z/s⌋ on shapes whose checker lies in their plane (planes, disks), + ⌊q.y/s⌋ on the others;
+// the parity in the floor sense (k = −1 is odd). In double: the floors are exact integers.
+bool odd_cell(Real size, Vec3 q, bool in_plane) {
+    const double s = size;
+    double k = std::floor(q.x / s) + std::floor(q.z / s);
+    if (!in_plane) k += std::floor(q.y / s);
+    return std::fmod(k, 2.0) != 0;
+}
+
+// The fraction of a light's colour that reaches a surface from `light` (docs/ARCHITECTURE.md,
+// "Conventions": shadows): 1 when nothing lies on the open segment, else the product of the
+// transmissions of every surface the segment crosses (0 at the first opaque one). Shadow rays
+// are not bent; each piece of the segment between crossings is one shadow ray. Without a
+// transmissive material in the scene, one any-hit query answers it.
+Real light_through(const World& world, const SurfacePoint& surface, Vec3 light,
+                   RayCounts& counts) {
+    Vec3 from = surface.spawn();
+    ++counts.shadow;
+    if (!world.geometry()->transmissive)
+        return world.occluded({from, light - from}, 1.0_r, surface.skip) ? 0.0_r : 1.0_r;
+    std::uint32_t skip = surface.skip;
+    Real through = 1;
+    for (int crossing = 0; crossing < kMaxCrossings; ++crossing) {
+        const Ray segment{from, light - from};
+        const Hit hit = world.intersect(segment, 1.0_r, skip);
+        if (!hit.found()) return through;
+        through *= world.material(hit.object).transmission;
+        if (through == 0) return 0;
+        const SurfacePoint crossed = world.surface(segment, hit);
+        from = crossed.spawn_through();
+        skip = crossed.skip_through;
+        ++counts.shadow;
+    }
+    return 0;
+}
+
+// The transmitted direction (Heckbert's form of Snell's law) for unit direction d at facing
+// normal n with η the ratio of the indices (from over to); the mirror direction when k < 0, and
+// `total` set (total internal reflection).
+Vec3 transmitted(Vec3 d, Vec3 n, Real eta, bool& total) {
+    const Real c = -glm::dot(n, d);
+    const Real k = 1 - eta * eta * (1 - c * c);
+    total = k < 0;
+    if (total) return d - 2.0_r * n * glm::dot(n, d);
+    return eta * d + (eta * c - std::sqrt(k)) * n;
+}
+
+} // namespace
+
+// The lecture's sum, with §11's checker, shadows through glass and transmitted rays (62 lines:
+// the local terms and the two kinds of secondary ray share the weight rule and its counters).
 Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoint& surface,
            int depth, Real weight, RayCounts& counts, Real& omitted_weight) {
     const Phong& m = world.material(hit.object);
     const Vec3 n = surface.shading;
     const Vec3 v = -glm::normalize(ray.direction);
-    const Vec3 origin = surface.spawn();
+    const bool odd =
+        m.checker_size > 0 &&
+        odd_cell(m.checker_size, surface.object_point,
+                 shape_traits(world.objects()[hit.object].shape).checker_in_plane);
+    const Vec3 diffuse = odd ? m.checker_diffuse : m.diffuse;
+    const Vec3 ambient = odd ? m.checker_ambient : m.ambient;
 
-    Vec3 colour = m.ambient * world.ambient();
+    Vec3 colour = ambient * world.ambient();
     for (const Light& light : world.lights()) {
         const Vec3 l = glm::normalize(light.position - surface.position);
         const Real n_dot_l = glm::dot(n, l);
         if (n_dot_l <= 0) continue; // the light is behind the surface
-        ++counts.shadow;
-        // Hard shadows: anything on the open segment from the point to the light (t in (0, 1)).
-        if (world.occluded({origin, light.position - origin}, 1.0_r, surface.skip)) continue;
-        Vec3 lit = m.diffuse * n_dot_l;
+        const Real through = light_through(world, surface, light.position, counts);
+        if (through == 0) continue;
+        Vec3 lit = diffuse * n_dot_l;
         if (m.specular != Vec3(0.0_r)) { // pow is dear, and NFF's matte surfaces have 1e5
             const Vec3 r = 2.0_r * n * n_dot_l - l; // reflect(−l, n)
             lit += m.specular * std::pow(glm::max(0.0_r, glm::dot(r, v)), m.shininess);
         }
-        colour += light.color * lit;
+        colour += (through * light.color) * lit;
     }
 
-    // Perfect reflection, cast only while it can still matter: below max_depth, and while the
-    // path weight (this surface's reflectivity included) stays at or above min_reflectivity.
+    // Reflected and transmitted rays, each cast only while it can still matter: below
+    // max_depth, and while the path weight (this surface's factor included) stays at or above
+    // min_reflectivity; otherwise its weight is what the cut-off may have cost.
     const RenderSettings& settings = world.settings();
-    const Real reflected_weight = weight * m.reflectivity;
-    if (m.reflectivity <= 0) return colour;
-    if (depth < settings.max_depth && reflected_weight >= settings.min_reflectivity) {
-        ++counts.reflection;
-        const Ray reflection{origin, reflect(ray.direction, n)};
-        const Hit next = world.intersect(reflection, kInfinity, surface.skip);
-        colour += m.reflectivity * shade(world, reflection, next, depth + 1, reflected_weight,
-                                         counts, omitted_weight);
-    } else {
-        omitted_weight = reflected_weight;
+    const auto follow = [&](Real factor, const Ray& next, std::uint32_t skip,
+                            std::uint64_t& count) {
+        const Real next_weight = weight * factor;
+        if (depth >= settings.max_depth || next_weight < settings.min_reflectivity) {
+            omitted_weight += next_weight;
+            return;
+        }
+        ++count;
+        const Hit next_hit = world.intersect(next, kInfinity, skip);
+        colour += factor * shade(world, next, next_hit, depth + 1, next_weight, counts,
+                                 omitted_weight);
+    };
+    if (m.reflectivity > 0)
+        follow(m.reflectivity, {surface.spawn(), reflect(ray.direction, n)}, surface.skip,
+               counts.reflection);
+    if (m.transmission > 0) {
+        // Entering (the side of the shape's outward normal): from air into the material.
+        const Real eta = surface.entering ? 1 / m.ior : m.ior;
+        bool total = false;
+        const Vec3 d = transmitted(glm::normalize(ray.direction), n, eta, total);
+        if (total) // leaves on the facing side, as a reflection does
+            follow(m.transmission, {surface.spawn(), d}, surface.skip, counts.transmission);
+        else
+            follow(m.transmission, {surface.spawn_through(), d}, surface.skip_through,
+                   counts.transmission);
     }
     return colour;
 }

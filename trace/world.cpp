@@ -19,9 +19,12 @@ Bounds world_bounds(const std::pair<DVec3, DVec3>& local, const DMat4& m) {
 } // namespace
 
 SceneGeometry::SceneGeometry(const Scene& scene) {
-    for (const Material& m : scene.materials)
-        materials.push_back(
-            {Vec3(m.ambient), Vec3(m.diffuse), Vec3(m.specular), m.shininess, m.reflectivity});
+    for (const Material& m : scene.materials) {
+        materials.push_back({Vec3(m.ambient), Vec3(m.diffuse), Vec3(m.specular), m.shininess,
+                             m.reflectivity, m.transmission, m.ior, m.checker.size,
+                             Vec3(m.checker.diffuse), Vec3(m.checker.ambient)});
+        transmissive |= m.transmission > 0;
+    }
     const Stopwatch watch;
     for (const TriangleMesh& mesh : scene.meshes) meshes.push_back(prepare_mesh(mesh));
     build_seconds = watch.seconds();
@@ -200,20 +203,27 @@ SurfacePoint World::surface(const Ray& ray, const Hit& hit) const {
     // it: a ray leaving on the normal's side cannot meet the object again, so it skips the
     // object instead of stepping off it. No offset is needed then, and none can be too large
     // for a small neighbour (a millimetre sphere on a kilometre floor, where the offset below
-    // would be 2e-3).
+    // would be 2e-3). A ray going on through the surface leaves a planar shape the same way, and
+    // a convex solid it was inside of (the solid lies behind the tangent plane it crosses); into
+    // a solid it must still find the far wall, so it steps off instead.
     const ShapeTraits& traits = shape_traits(object.shape);
-    if (traits.planar || (traits.convex && !from_inside))
-        return {m.point_to_world(s.point), normal, shading, 0.0_r, hit.object};
+    SurfacePoint point{m.point_to_world(s.point), normal, shading, 0.0_r};
+    point.entering = !from_inside;
+    point.object_point = p;
+    if (traits.planar || (traits.convex && !from_inside)) point.skip = hit.object;
+    if (traits.planar || (traits.convex && from_inside)) point.skip_through = hit.object;
+    const bool through = geometry_->materials[object.material].transmission > 0;
+    if (point.skip != kNoObject && (!through || point.skip_through != kNoObject)) return point;
     // Spawn offset (Wächter & Binder, Ray Tracing Gems ch. 6; pbrt-v4's OffsetRayOrigin): a new
     // ray from this point is intersected with this object after mapping back by M⁻¹, so it must
     // leave the object-space error box of the point: its extent along the object normal is
     // |n|·error (surface projection + float round trip, see roundtrip_error). Moving δ along the
-    // world normal moves the object point δ·|M⁻ᵀn| along n, hence δ = |n|·error / |M⁻ᵀn|. Twice
-    // that keeps the sign of the next intersection's near root (c = |o|² − 1 for spheres, o − 1
-    // for box faces) clear of its own rounding.
+    // world normal moves the object point δ·|M⁻ᵀn| along n, hence δ = |n|·error / |M⁻ᵀn|, to
+    // either side. Twice that keeps the sign of the next intersection's near root (c = |o|² − 1
+    // for spheres, o − 1 for box faces) clear of its own rounding.
     const Vec3 error = m.roundtrip_error(s.point, s.error);
-    const Real offset = 2.0_r * glm::dot(glm::abs(s.normal), error) / m.normal_stretch(s.normal);
-    return {m.point_to_world(s.point), normal, shading, offset, kNoObject};
+    point.offset = 2.0_r * glm::dot(glm::abs(s.normal), error) / m.normal_stretch(s.normal);
+    return point;
 }
 
 } // namespace GLINT_PRECISION

@@ -31,7 +31,9 @@ struct Object {
 // A material as shading reads it (scene colours in the tracer's precision).
 struct Phong {
     Vec3 ambient, diffuse, specular;
-    Real shininess, reflectivity;
+    Real shininess, reflectivity, transmission, ior;
+    Real checker_size; // 0: none
+    Vec3 checker_diffuse, checker_ambient;
 };
 
 struct Light {
@@ -44,12 +46,23 @@ struct SurfacePoint {
     Vec3 position;
     Vec3 normal;  // unit geometric normal, flipped to face the incoming ray
     Vec3 shading; // unit normal for shading: `normal`, or the mesh's smooth one on its side
-    Real offset;  // distance along `normal` that clears the surface's rounding error (0 if skip)
+    // Distance along `normal` that clears the surface's rounding error; 0 where neither side
+    // needs it (both skip), or where only the far side would and the material does not transmit.
+    Real offset;
     // The object itself when no ray leaving here on the normal's side can meet it again (a
     // convex solid left from outside, or a planar shape): such rays ignore it and start on the
     // surface, so they need no offset. kNoObject otherwise (meshes, solids left from inside).
     std::uint32_t skip = kNoObject;
-    Vec3 spawn() const { return position + offset * normal; }
+    // The same for rays that go on through the surface, to the far side (transmitted and shadow
+    // rays through glass): the object for planar shapes and convex solids left from inside;
+    // kNoObject for rays into a solid, which must still find its far wall.
+    std::uint32_t skip_through = kNoObject;
+    bool entering = true; // the ray meets the side the shape's outward normal is on
+    Vec3 object_point{0}; // M⁻¹o + t·M⁻¹d, where the checker is evaluated
+    Vec3 spawn() const { return skip == kNoObject ? position + offset * normal : position; }
+    Vec3 spawn_through() const {
+        return skip_through == kNoObject ? position - offset * normal : position;
+    }
 };
 
 // A query's SlabRay, made on first use: only queries that find a hit pay its divisions.
@@ -78,6 +91,7 @@ struct SceneGeometry {
 
     std::vector<Mesh> meshes;
     std::vector<Phong> materials;
+    bool transmissive = false; // some material transmits: shadow rays must count crossings
     double build_seconds = 0; // the meshes' BVHs
 };
 

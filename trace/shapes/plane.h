@@ -32,7 +32,8 @@ inline SurfaceSample plane_surface(Vec3 p) {
 // The plane and the disk in the shape table (trace/shapes/table.h).
 struct Plane {
     static constexpr std::string_view name = "plane";
-    static constexpr ShapeTraits traits{.planar = true, .raster = RasterAs::analytic, .keys = {}};
+    static constexpr ShapeTraits traits{
+        .planar = true, .checker_in_plane = true, .raster = RasterAs::analytic, .keys = {}};
 
     // Unbounded: tested by every ray, outside any structure.
     static std::optional<ObjectBox> bounds(const SceneObject&, const std::vector<TriangleMesh>&) {
@@ -49,7 +50,7 @@ struct Plane {
 
 struct Disk {
     static constexpr std::string_view name = "disk";
-    static constexpr ShapeTraits traits{.planar = true, .keys = {}};
+    static constexpr ShapeTraits traits{.planar = true, .checker_in_plane = true, .keys = {}};
 
     static ObjectBox bounds(const SceneObject&, const std::vector<TriangleMesh>&) {
         return {DVec3(-1.0, 0.0, -1.0), DVec3(1.0, 0.0, 1.0)};

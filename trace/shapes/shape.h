@@ -42,6 +42,8 @@ struct ShapeTraits {
     bool convex = false;
     // ... nor on either side.
     bool planar = false;
+    // The checker (docs/SCENES.md) uses x and z only, in the shape's plane (planes, disks).
+    bool checker_in_plane = false;
     RasterAs raster = RasterAs::tessellated;
     // Whether shaders/item_proxy.frag intersects it exactly; proxy mode draws the tessellation
     // of a tessellated shape that it does not.
