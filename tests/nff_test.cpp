@@ -60,7 +60,8 @@ TEST(Nff, FillMapsKdKsAndShineAndUsesKsAsTheReflectivity) {
 }
 
 TEST(Nff, FillLinesGiveTransmissionAndTheIndexOfRefraction) {
-    const Scene s = nff("f 1 1 1 0.5 0.5 3 0.8 1.25\ns 0 0 0 1\nf 1 1 1 0.5 0.5 3 0 0\ns 2 0 0 1\n");
+    const Scene s =
+        nff("f 1 1 1 0.5 0.5 3 0.8 1.25\ns 0 0 0 1\nf 1 1 1 0.5 0.5 3 0 0\ns 2 0 0 1\n");
     EXPECT_TRUE(s.notes.empty());
     const Material& glass = s.materials[s.objects[0].material];
     EXPECT_EQ(glass.transmission, 0.8f);

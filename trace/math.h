@@ -9,6 +9,7 @@
 
 #include <glm/glm.hpp>
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 
@@ -72,6 +73,18 @@ inline Real loose(Real t) {
 // Perfect reflection of direction d about unit normal n: d' = d - 2n(n·d) (Ray Tracing III).
 inline Vec3 reflect(Vec3 d, Vec3 n) {
     return d - 2.0_r * n * glm::dot(n, d);
+}
+
+// The transmitted direction for unit direction d at unit normal n facing it, η the ratio of the
+// indices (from over to), in Heckbert's form of Snell's law: with c = −n·d and
+// k = 1 − η²(1 − c²), η·d + (η·c − √k)·n; when k < 0 (total internal reflection) the mirror
+// direction reflect(d, n), and `total` is set.
+inline Vec3 refract(Vec3 d, Vec3 n, Real eta, bool& total) {
+    const Real c = -glm::dot(n, d);
+    const Real k = 1 - eta * eta * (1 - c * c);
+    total = k < 0;
+    if (total) return reflect(d, n);
+    return eta * d + (eta * c - std::sqrt(k)) * n;
 }
 
 inline Real max_component(Vec3 v) {

@@ -32,8 +32,7 @@ bool odd_cell(Real size, Vec3 q, bool in_plane) {
 // transmissions of every surface the segment crosses (0 at the first opaque one). Shadow rays
 // are not bent; each piece of the segment between crossings is one shadow ray. Without a
 // transmissive material in the scene, one any-hit query answers it.
-Real light_through(const World& world, const SurfacePoint& surface, Vec3 light,
-                   RayCounts& counts) {
+Real light_through(const World& world, const SurfacePoint& surface, Vec3 light, RayCounts& counts) {
     Vec3 from = surface.spawn();
     ++counts.shadow;
     if (!world.geometry()->transmissive)
@@ -54,17 +53,6 @@ Real light_through(const World& world, const SurfacePoint& surface, Vec3 light,
     return 0;
 }
 
-// The transmitted direction (Heckbert's form of Snell's law) for unit direction d at facing
-// normal n with η the ratio of the indices (from over to); the mirror direction when k < 0, and
-// `total` set (total internal reflection).
-Vec3 transmitted(Vec3 d, Vec3 n, Real eta, bool& total) {
-    const Real c = -glm::dot(n, d);
-    const Real k = 1 - eta * eta * (1 - c * c);
-    total = k < 0;
-    if (total) return d - 2.0_r * n * glm::dot(n, d);
-    return eta * d + (eta * c - std::sqrt(k)) * n;
-}
-
 } // namespace
 
 // The lecture's sum, with §11's checker, shadows through glass and transmitted rays (62 lines:
@@ -74,10 +62,9 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoin
     const Phong& m = world.material(hit.object);
     const Vec3 n = surface.shading;
     const Vec3 v = -glm::normalize(ray.direction);
-    const bool odd =
-        m.checker_size > 0 &&
-        odd_cell(m.checker_size, surface.object_point,
-                 shape_traits(world.objects()[hit.object].shape).checker_in_plane);
+    const bool odd = m.checker_size > 0 &&
+                     odd_cell(m.checker_size, surface.object_point,
+                              shape_traits(world.objects()[hit.object].shape).checker_in_plane);
     const Vec3 diffuse = odd ? m.checker_diffuse : m.diffuse;
     const Vec3 ambient = odd ? m.checker_ambient : m.ambient;
 
@@ -109,8 +96,8 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoin
         }
         ++count;
         const Hit next_hit = world.intersect(next, kInfinity, skip);
-        colour += factor * shade(world, next, next_hit, depth + 1, next_weight, counts,
-                                 omitted_weight);
+        colour +=
+            factor * shade(world, next, next_hit, depth + 1, next_weight, counts, omitted_weight);
     };
     if (m.reflectivity > 0)
         follow(m.reflectivity, {surface.spawn(), reflect(ray.direction, n)}, surface.skip,
@@ -119,7 +106,7 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoin
         // Entering (the side of the shape's outward normal): from air into the material.
         const Real eta = surface.entering ? 1 / m.ior : m.ior;
         bool total = false;
-        const Vec3 d = transmitted(glm::normalize(ray.direction), n, eta, total);
+        const Vec3 d = refract(glm::normalize(ray.direction), n, eta, total);
         if (total) // leaves on the facing side, as a reflection does
             follow(m.transmission, {surface.spawn(), d}, surface.skip, counts.transmission);
         else

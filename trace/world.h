@@ -92,7 +92,7 @@ struct SceneGeometry {
     std::vector<Mesh> meshes;
     std::vector<Phong> materials;
     bool transmissive = false; // some material transmits: shadow rays must count crossings
-    double build_seconds = 0; // the meshes' BVHs
+    double build_seconds = 0;  // the meshes' BVHs
 };
 
 class World {
