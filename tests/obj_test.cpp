@@ -117,6 +117,38 @@ INSTANTIATE_TEST_SUITE_P(
         BadObj{"no faces", kTri, "m.obj:4: no faces"}),
     [](const auto& info) { return testing::test_name(info.param.what); });
 
+// An OBJ whose one library is `mtl`.
+ObjModel parse_with_mtl(const std::string& text, const std::string& mtl) {
+    return parse_obj(text, "m.obj", [&](const std::string&) { return mtl; });
+}
+
+TEST(Obj, MtlIllumAndDissolveMapToReflectionAndTransmission) {
+    const std::string faces = "mtllib m.mtl\n" + kTri + "usemtl glass\nf 1 2 3\n";
+    const ObjModel glass = parse_with_mtl(
+        faces, "newmtl glass\nKd 0.1 0.2 0.3\nKs 0.3 0.3 0.6\nNs 50\nillum 7\nNi 1.3\nd 0.2\n");
+    ASSERT_EQ(glass.parts.size(), 1u);
+    ASSERT_TRUE(glass.parts[0].material.has_value());
+    const Material m = *glass.parts[0].material;
+    EXPECT_EQ(m.diffuse, glm::vec3(0.1f, 0.2f, 0.3f));
+    EXPECT_FLOAT_EQ(m.reflectivity, 0.4f); // the mean of Ks
+    EXPECT_FLOAT_EQ(m.transmission, 0.8f); // 1 − d
+    EXPECT_FLOAT_EQ(m.ior, 1.3f);
+    const Material clear =
+        *parse_with_mtl(faces, "newmtl glass\nillum 4\nNi 1.5\n").parts[0].material;
+    EXPECT_FLOAT_EQ(clear.transmission, 1.0f) << "refracting illum with d = 1: all of it";
+    const Material plain =
+        *parse_with_mtl(faces, "newmtl glass\nKs 0.5 0.5 0.5\nillum 2\n").parts[0].material;
+    EXPECT_EQ(plain.reflectivity, 0.0f) << "illum 2 is a highlight, not a mirror";
+    EXPECT_EQ(plain.transmission, 0.0f);
+    try {
+        parse_with_mtl(faces, "newmtl glass\nillum 7\nNi 0\n");
+        FAIL() << "accepted an index of refraction of 0";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("m.obj: material 'glass': Ni"), std::string::npos)
+            << e.what();
+    }
+}
+
 TEST(Obj, NegativeIndicesCountBackAndAMissingLibraryIsANote) {
     const ObjModel model = parse("mtllib nowhere.mtl\n" + kTri + "usemtl x\nf -3 -2 -1\n");
     ASSERT_EQ(model.parts.size(), 1u);

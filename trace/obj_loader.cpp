@@ -178,6 +178,34 @@ glm::vec3 mtl_colour(const tinyobj::real_t (&c)[3], const std::string& what,
     return {c[0], c[1], c[2]};
 }
 
+// An MTL material in glint's model (docs/SCENES.md, "OBJ"): Kd the diffuse and ambient, Ks the
+// specular, Ns the shininess; illum 3 to 7 (ray-traced reflection) make the mean of Ks the
+// reflectivity; illum 4, 6 and 7 (refraction) and any d below 1 (or Tr above 0) transmit
+// 1 − d of the light, with Ni the index of refraction.
+Material mtl_material(const tinyobj::material_t& m, const std::string& name) {
+    const auto fail = [&](const std::string& what) {
+        throw SceneError(name + ": material '" + m.name + "': " + what);
+    };
+    Material material;
+    material.diffuse = mtl_colour(m.diffuse, "Kd", m.name, name);
+    material.ambient = material.diffuse;
+    material.specular = mtl_colour(m.specular, "Ks", m.name, name);
+    if (!(m.shininess >= 0 && m.shininess <= 1e4)) fail("Ns must be between 0 and 10000");
+    material.shininess = m.shininess;
+    if (!(m.dissolve >= 0 && m.dissolve <= 1)) fail("d must be between 0 and 1 (Tr: 1 − d)");
+    if (m.illum >= 3 && m.illum <= 7)
+        material.reflectivity =
+            std::min(1.0f, (material.specular.x + material.specular.y + material.specular.z) / 3);
+    const bool refracts = m.illum == 4 || m.illum == 6 || m.illum == 7;
+    if (refracts || m.dissolve < 1) {
+        material.transmission = refracts && m.dissolve == 1 ? 1.0f : 1.0f - m.dissolve;
+        if (!(m.ior > 0 && m.ior <= 100))
+            fail("Ni (the index of refraction) must be above 0 and at most 100 where it transmits");
+        material.ior = m.ior;
+    }
+    return material;
+}
+
 // One part being built: its vertices are the file's distinct (position, normal) pairs it uses.
 struct PartBuilder {
     ObjPart part;
@@ -279,15 +307,7 @@ ObjModel parse_obj(const std::string& text, const std::string& name,
             if (!std::isfinite(n.x + n.y + n.z)) n = glm::vec3(0.0f); // the facet stands in
         if (id >= 0) {
             const tinyobj::material_t& m = materials[static_cast<std::size_t>(id)];
-            Material material;
-            material.diffuse = mtl_colour(m.diffuse, "Kd", m.name, name);
-            material.ambient = material.diffuse;
-            material.specular = mtl_colour(m.specular, "Ks", m.name, name);
-            if (!(m.shininess >= 0 && m.shininess <= 1e4))
-                throw SceneError(name + ": material '" + m.name +
-                                 "': Ns must be between 0 and 10000");
-            material.shininess = m.shininess;
-            b.part.material = material;
+            b.part.material = mtl_material(m, name);
             b.part.material_name = m.name;
         }
         model.parts.push_back(std::move(b.part));
