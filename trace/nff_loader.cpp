@@ -218,7 +218,7 @@ class NffReader {
         const double transmission = number_in(f, "T", 0, 1);
         const double ior = number(f, "index of refraction");
         // Only a transmitting material's index matters (and must then be usable).
-        if (transmission > 0 && !(ior > 0 && ior <= 100))
+        if (transmission > 0 && !usable_ior(ior))
             fail(f.line, "f's index of refraction must be above 0 and at most 100 where T > 0");
         Material m;
         m.transmission = static_cast<float>(transmission);

@@ -199,7 +199,7 @@ Material mtl_material(const tinyobj::material_t& m, const std::string& name) {
     const bool refracts = m.illum == 4 || m.illum == 6 || m.illum == 7;
     if (refracts || m.dissolve < 1) {
         material.transmission = refracts && m.dissolve == 1 ? 1.0f : 1.0f - m.dissolve;
-        if (!(m.ior > 0 && m.ior <= 100))
+        if (!usable_ior(m.ior))
             fail("Ni (the index of refraction) must be above 0 and at most 100 where it transmits");
         material.ior = m.ior;
     }

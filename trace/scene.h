@@ -49,6 +49,12 @@ struct Checker {
     glm::vec3 ambient{0.0f};
 };
 
+// The indices of refraction a scene may give: above 0 (as any material's) and at most this.
+inline constexpr double kMaxIor = 100;
+inline bool usable_ior(double ior) {
+    return ior > 0 && ior <= kMaxIor;
+}
+
 struct Material {
     glm::vec3 ambient{0.8f};
     glm::vec3 diffuse{0.8f};

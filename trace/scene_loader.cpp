@@ -245,7 +245,7 @@ class Loader {
         if (has(node, "ior")) {
             const Node ior = node.child("ior");
             const double v = number(ior);
-            if (!(v > 0 && v <= 100)) fail(ior, "must be above 0 and at most 100");
+            if (!usable_ior(v)) fail(ior, "must be above 0 and at most 100");
             m.ior = static_cast<float>(v);
         }
         if (has(node, "checker")) m.checker = checker(node.child("checker"));
