@@ -356,7 +356,7 @@ void ItemBuffer::upload(const World& world, RasterMode mode, int tessellation) {
     gl.geometries.clear();
     gl.items.clear();
     gl.instances_of.clear();
-    std::map<std::uint32_t, std::size_t> mesh_geometry; // each mesh uploaded once
+    std::map<const Mesh*, std::size_t> mesh_geometry; // each mesh uploaded once
     deviations_.assign(world.objects().size(), 0.0f);
     // One proxy box per distinct object-space box, and one tessellation per distinct shape and
     // parameters (cones: per top radius; open or capped), shared by every object using it.
@@ -370,9 +370,9 @@ void ItemBuffer::upload(const World& world, RasterMode mode, int tessellation) {
             continue;
         }
         if (traits.raster == RasterAs::triangles) {
-            auto [it, added] = mesh_geometry.emplace(o.mesh, 0);
+            auto [it, added] = mesh_geometry.emplace(o.params.mesh, 0);
             if (added) {
-                const Mesh& mesh = world.mesh(o.mesh);
+                const Mesh& mesh = *o.params.mesh;
                 it->second = gl.add_geometry(mesh.vertices, mesh.triangles);
             }
             gl.add_instance(it->second, i);

@@ -67,7 +67,7 @@ TEST(Obj, ScenePlacingAFileManyTimesStoresItsMeshOnce) {
     EXPECT_EQ(scene.objects.back().material, named("mirror"));
     // World prepares each mesh once; the instances differ only in their transforms.
     const World world(scene);
-    EXPECT_EQ(world.objects()[1].mesh, world.objects().back().mesh);
+    EXPECT_EQ(world.objects()[1].params.mesh, world.objects().back().params.mesh);
 }
 
 ObjModel parse(const std::string& text) {

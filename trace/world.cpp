@@ -40,10 +40,11 @@ World::World(const Scene& scene, std::shared_ptr<const SceneGeometry> geometry, 
     for (const SceneObject& o : scene.objects) {
         const DMat4 m = to_camera * o.transform;
         const std::optional<ObjectBox> box = unit_box(o, scene.meshes);
+        // The shapes given by vertices are the ones with a mesh (SceneObject::mesh).
         const ShapeParams params{o.top_radius, o.open,
                                  shape_traits(o.shape).keys.vertices ? &geometry_->meshes[o.mesh]
                                                                      : nullptr};
-        objects_.push_back({o.shape, make_transform(m), o.material, params, o.mesh, box.has_value(),
+        objects_.push_back({o.shape, make_transform(m), o.material, params, box.has_value(),
                             box ? world_bounds(*box, m) : Bounds{}});
     }
     for (const PointLight& light : scene.lights)

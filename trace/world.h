@@ -22,8 +22,7 @@ struct Object {
     ShapeKind shape;
     Transform transform; // object → camera-relative world
     std::uint32_t material;
-    ShapeParams params; // what the shape's routines read (trace/shapes/table.h)
-    std::uint32_t mesh; // index into the scene's meshes, for triangles and meshes
+    ShapeParams params; // what the shape's routines read (trace/shapes/table.h); its mesh, if any
     bool bounded;       // false for planes
     Bounds bounds;      // camera-relative world bounds, conservative
 };
