@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <optional>
@@ -51,70 +52,55 @@ class ReferenceRenderer {
     }
 
   private:
-    std::optional<RefHit> hit_object(int index, dvec3 o, dvec3 d) const {
+    // Where the line o + t·d crosses object `index`'s surface: every root, in increasing t, with
+    // the box face it is on (0 for the other shapes).
+    std::vector<std::pair<double, int>> roots(int index, dvec3 o, dvec3 d) const {
         const SceneObject& object = scene_.objects[index];
         const glm::dmat4& inv = inverses_[index];
         const dvec3 lo = dvec3(inv * dvec4(o, 1)), ld = dvec3(inv * dvec4(d, 0));
-        double t = -1;
-        int part = 0;
-        dvec3 n_local;
         if (object.shape == ShapeKind::sphere) {
             const double a = glm::dot(ld, ld), b = 2 * glm::dot(lo, ld), c = glm::dot(lo, lo) - 1;
             const double disc = b * b - 4 * a * c;
-            if (disc < 0) return std::nullopt;
-            const double t0 = (-b - std::sqrt(disc)) / (2 * a),
-                         t1 = (-b + std::sqrt(disc)) / (2 * a);
-            t = t0 > kEpsilon ? t0 : t1;
-            n_local = lo + t * ld;
-        } else if (object.shape == ShapeKind::plane) {
-            t = -lo.y / ld.y;
-            n_local = {0, 1, 0};
-        } else if (object.shape == ShapeKind::box) {
-            double t_in = -1e300, t_out = 1e300;
-            int face_in = 0, face_out = 0;
-            for (int k = 0; k < 3; ++k) {
-                double ta = (-1 - lo[k]) / ld[k], tb = (1 - lo[k]) / ld[k];
-                int fa = 2 * k, fb = 2 * k + 1;
-                if (ta > tb) std::swap(ta, tb), std::swap(fa, fb);
-                if (ta > t_in) t_in = ta, face_in = fa;
-                if (tb < t_out) t_out = tb, face_out = fb;
-            }
-            if (t_in > t_out) return std::nullopt;
-            t = t_in > kEpsilon ? t_in : t_out;
-            part = t_in > kEpsilon ? face_in : face_out;
+            if (disc < 0) return {};
+            return {{(-b - std::sqrt(disc)) / (2 * a), 0}, {(-b + std::sqrt(disc)) / (2 * a), 0}};
+        }
+        if (object.shape == ShapeKind::plane) return {{-lo.y / ld.y, 0}};
+        double t_in = -1e300, t_out = 1e300; // the box
+        int face_in = 0, face_out = 0;
+        for (int k = 0; k < 3; ++k) {
+            double ta = (-1 - lo[k]) / ld[k], tb = (1 - lo[k]) / ld[k];
+            int fa = 2 * k, fb = 2 * k + 1;
+            if (ta > tb) std::swap(ta, tb), std::swap(fa, fb);
+            if (ta > t_in) t_in = ta, face_in = fa;
+            if (tb < t_out) t_out = tb, face_out = fb;
+        }
+        if (t_in > t_out) return {};
+        return {{t_in, face_in}, {t_out, face_out}};
+    }
+
+    std::optional<RefHit> hit_object(int index, dvec3 o, dvec3 d) const {
+        const auto all = roots(index, o, d);
+        const auto first = std::find_if(all.begin(), all.end(),
+                                        [](const auto& root) { return root.first > kEpsilon; });
+        if (first == all.end()) return std::nullopt;
+        const auto [t, part] = *first;
+        const glm::dmat4& inv = inverses_[index];
+        dvec3 n_local(0, 1, 0); // the plane's
+        if (scene_.objects[index].shape == ShapeKind::sphere) {
+            n_local = dvec3(inv * dvec4(o, 1)) + t * dvec3(inv * dvec4(d, 0));
+        } else if (scene_.objects[index].shape == ShapeKind::box) {
             n_local = dvec3(0);
             n_local[part / 2] = part % 2 ? 1 : -1;
         }
-        if (!(t > kEpsilon)) return std::nullopt;
         // Normals by the inverse transpose (Ray Tracing III).
         const dvec3 n = glm::normalize(glm::transpose(dmat3(inv)) * n_local);
         return RefHit{t, index, part, o + t * d, n};
     }
 
-    // Every t in (kEpsilon, 1) where the segment o + t·d crosses object `index`'s surface.
+    // How many times the segment o + t·d, t in (kEpsilon, 1), crosses object `index`'s surface.
     int crossings(int index, dvec3 o, dvec3 d) const {
-        const SceneObject& object = scene_.objects[index];
-        const glm::dmat4& inv = inverses_[index];
-        const dvec3 lo = dvec3(inv * dvec4(o, 1)), ld = dvec3(inv * dvec4(d, 0));
-        std::vector<double> roots;
-        if (object.shape == ShapeKind::sphere) {
-            const double a = glm::dot(ld, ld), b = 2 * glm::dot(lo, ld), c = glm::dot(lo, lo) - 1;
-            const double disc = b * b - 4 * a * c;
-            if (disc >= 0)
-                roots = {(-b - std::sqrt(disc)) / (2 * a), (-b + std::sqrt(disc)) / (2 * a)};
-        } else if (object.shape == ShapeKind::plane) {
-            roots = {-lo.y / ld.y};
-        } else if (object.shape == ShapeKind::box) {
-            double t_in = -1e300, t_out = 1e300;
-            for (int k = 0; k < 3; ++k) {
-                double ta = (-1 - lo[k]) / ld[k], tb = (1 - lo[k]) / ld[k];
-                if (ta > tb) std::swap(ta, tb);
-                t_in = std::max(t_in, ta), t_out = std::min(t_out, tb);
-            }
-            if (t_in <= t_out) roots = {t_in, t_out};
-        }
         int count = 0;
-        for (const double t : roots) count += t > kEpsilon && t < 1;
+        for (const auto& [t, part] : roots(index, o, d)) count += t > kEpsilon && t < 1;
         return count;
     }
 
