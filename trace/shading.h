@@ -9,10 +9,11 @@ namespace glint {
 inline namespace GLINT_PRECISION {
 
 // Colour seen along `ray` (unclamped), which has already produced `hit` (maybe none).
-// `depth` is the number of reflections before this hit (0 for the primary hit) and `weight` the
-// product of the reflectivities along the path so far. Counts the rays it casts; when max_depth
-// or min_reflectivity stops the path, sets `omitted_weight` to the weight the next reflection
-// would have carried (its contribution is at most that weight times the radiance it would see).
+// `depth` is the number of reflections and transmissions before this hit (0 for the primary
+// hit) and `weight` the product of the reflectivities and transmissions along the path so far.
+// Counts the rays it casts; for each reflected or transmitted ray that max_depth or
+// min_reflectivity keeps from being cast, adds the weight it would have carried to
+// `omitted_weight` (its contribution is at most that weight times the radiance it would see).
 Vec3 shade(const World& world, const Ray& ray, const Hit& hit, int depth, Real weight,
            RayCounts& counts, Real& omitted_weight);
 // The same at a found hit whose surface point (World::surface) the caller has already rebuilt.
