@@ -31,12 +31,17 @@ bool odd_cell(Real size, Vec3 q, bool in_plane) {
 // "Conventions": shadows): 1 when nothing lies on the open segment, else the product of the
 // transmissions of every surface the segment crosses (0 at the first opaque one). Shadow rays
 // are not bent; each piece of the segment between crossings is one shadow ray. Without a
-// transmissive material in the scene, one any-hit query answers it.
+// transmissive material in the scene, one any-hit query answers it; with one, an any-hit query
+// for opaque objects first, so that only segments that meet glass and nothing opaque are
+// followed crossing by crossing.
 Real light_through(const World& world, const SurfacePoint& surface, Vec3 light, RayCounts& counts) {
     Vec3 from = surface.spawn();
     ++counts.shadow;
     if (!world.geometry()->transmissive)
         return world.occluded({from, light - from}, 1.0_r, surface.skip) ? 0.0_r : 1.0_r;
+    bool glass = false;
+    if (world.opaque_between({from, light - from}, 1.0_r, surface.skip, glass)) return 0;
+    if (!glass) return 1;
     std::uint32_t skip = surface.skip;
     Real through = 1;
     for (int crossing = 0; crossing < kMaxCrossings; ++crossing) {

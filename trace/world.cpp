@@ -138,15 +138,19 @@ Hit World::closest(const Ray& ray, Real t_max, std::uint32_t skip, Counters& cou
     return best;
 }
 
-template <class Counters>
-bool World::any(const Ray& ray, Real t_max, std::uint32_t skip, Counters& counters) const {
+template <class Counters, class Blocks>
+bool World::any(const Ray& ray, Real t_max, std::uint32_t skip, Counters& counters,
+                const Blocks& blocks) const {
     const LazySlab slab(ray);
     const bool boxes_tested = accel_.kind() == AccelKind::list; // each item's box, first
+    const auto hits = [&](std::uint32_t object, bool box_tested) {
+        return object != skip &&
+               intersect_object(objects_[object], ray, slab, t_max, box_tested, counters).found() &&
+               blocks(object);
+    };
     for (const std::uint32_t object : unbounded_) {
         counters.primitive();
-        if (object != skip &&
-            intersect_object(objects_[object], ray, slab, t_max, false, counters).found())
-            return true;
+        if (hits(object, false)) return true;
     }
     bool found = false;
     // Boxes loosely, as intersect_object checks them after a hit: the list, testing each box
@@ -154,10 +158,7 @@ bool World::any(const Ray& ray, Real t_max, std::uint32_t skip, Counters& counte
     // end of a shadow ray 2e9 long, which the BVH counted (fuzz_nff).
     Real limit = loose(t_max);
     accel_.traverse(ray, limit, counters, [&](std::uint32_t item, Real&) {
-        const std::uint32_t object = bounded_[item];
-        found =
-            object != skip &&
-            intersect_object(objects_[object], ray, slab, t_max, boxes_tested, counters).found();
+        found = hits(bounded_[item], boxes_tested);
         return found;
     });
     return found;
@@ -170,9 +171,23 @@ Hit World::intersect(const Ray& ray, Real t_max, std::uint32_t skip) const {
 }
 
 bool World::occluded(const Ray& ray, Real t_max, std::uint32_t skip) const {
-    if (counting_) return any(ray, t_max, skip, counters_.local());
+    const auto every = [](std::uint32_t) { return true; };
+    if (counting_) return any(ray, t_max, skip, counters_.local(), every);
     NoCounters none;
-    return any(ray, t_max, skip, none);
+    return any(ray, t_max, skip, none, every);
+}
+
+bool World::opaque_between(const Ray& ray, Real t_max, std::uint32_t skip,
+                           bool& transmissive) const {
+    transmissive = false;
+    const auto blocks = [&](std::uint32_t object) {
+        const bool opaque = material(object).transmission == 0;
+        transmissive |= !opaque;
+        return opaque;
+    };
+    if (counting_) return any(ray, t_max, skip, counters_.local(), blocks);
+    NoCounters none;
+    return any(ray, t_max, skip, none, blocks);
 }
 
 Hit World::intersect_one(std::uint32_t object, const Ray& ray, Real t_max) const {

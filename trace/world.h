@@ -112,6 +112,10 @@ class World {
     Hit intersect(const Ray& ray, Real t_max = kInfinity, std::uint32_t skip = kNoObject) const;
     // Whether anything other than object `skip` is hit in (0, t_max).
     bool occluded(const Ray& ray, Real t_max, std::uint32_t skip = kNoObject) const;
+    // Whether an opaque object (one whose material does not transmit) other than `skip` is hit
+    // in (0, t_max); sets `transmissive` when a transmissive one is hit there too (when the
+    // answer is false, whether any is).
+    bool opaque_between(const Ray& ray, Real t_max, std::uint32_t skip, bool& transmissive) const;
     // The first hit on one object alone, in (0, t_max).
     Hit intersect_one(std::uint32_t object, const Ray& ray, Real t_max = kInfinity) const;
     SurfacePoint surface(const Ray& ray, const Hit& hit) const;
@@ -148,8 +152,10 @@ class World {
                              Counters& counters) const;
     template <class Counters>
     Hit closest(const Ray& ray, Real t_max, std::uint32_t skip, Counters& counters) const;
-    template <class Counters>
-    bool any(const Ray& ray, Real t_max, std::uint32_t skip, Counters& counters) const;
+    // Whether an object other than `skip` for which `blocks(object)` holds is hit in (0, t_max).
+    template <class Counters, class Blocks>
+    bool any(const Ray& ray, Real t_max, std::uint32_t skip, Counters& counters,
+             const Blocks& blocks) const;
 
     // The camera-relative part: objects, lights and bounds; the structure is the caller's.
     struct CameraRelative {};
