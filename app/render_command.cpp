@@ -141,8 +141,8 @@ void print_report(const RenderReport& r) {
         // error: said so, since a large bound on a bright mirror scene is usual, not an alarm.
         std::printf("reflection cut-off (max depth %d, min reflectivity %g): secondary rays "
                     "not followed could make %llu pixels brighter by more than 1/255, none by more "
-                    "than %d/255 (a worst-case bound, not a measured error; heaviest omitted path "
-                    "weight %.3g)\n",
+                    "than %d/255 (a worst-case bound, not a measured error; largest omitted weight "
+                    "in a pixel %.3g)\n",
                     scene.render.max_depth, static_cast<double>(scene.render.min_reflectivity),
                     static_cast<unsigned long long>(r.cutoff.pixels_over_one), r.cutoff.max,
                     r.cutoff.largest_omitted_weight);

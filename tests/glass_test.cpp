@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace glint {
@@ -160,6 +161,26 @@ TEST(Glass, ARayTreeCastsAndCutsTheHandCountedRays) {
     EXPECT_EQ(r.rays.shadow, 0u);
     EXPECT_FLOAT_EQ(r.omitted_weight[0], 0.75f);
     EXPECT_EQ(r.image.rgb[0], std::lround(255 * 0.15));
+}
+
+// A glass sphere and the camera inside a closed mirror box, as deep as glint allows and with no
+// weight cut-off: no ray escapes, and every glass hit casts two, so the tree would double at
+// each of 64 levels. The pixel's budget stops it, and what it stops is counted as omitted.
+TEST(Glass, APixelsRayTreeStaysWithinItsBudget) {
+    const Scene scene = parse_scene(R"({
+        "camera": {"eye": [0, 0, 3], "look_at": [0, 0, 0], "width": 6, "height": 4},
+        "materials": {"g": {"reflectivity": 0.5, "transmission": 0.5, "ior": 1.5},
+                      "m": {"reflectivity": 1}},
+        "render": {"max_depth": 64, "min_weight": 0},
+        "objects": [{"shape": "sphere", "material": "g"},
+                    {"shape": "box", "material": "m", "transform": [{"scale": 5}]}]})",
+                                    "budget.json");
+    const RenderResult r = render(World(scene));
+    const std::uint64_t pixels = r.omitted_weight.size();
+    EXPECT_LE(r.rays.reflection + r.rays.transmission, pixels * kMaxTreeRays);
+    EXPECT_GT(r.rays.reflection + r.rays.transmission, pixels * kMaxTreeRays / 2)
+        << "most pixels should reach the budget";
+    EXPECT_GT(*std::max_element(r.omitted_weight.begin(), r.omitted_weight.end()), 0.0f);
 }
 
 // Every structure and both primary modes give the same bytes on a glass scene.

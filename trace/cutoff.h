@@ -28,7 +28,7 @@ struct CutoffBound {
     std::vector<std::uint8_t> per_pixel;
     int max = 0;                       // largest per_pixel
     std::uint64_t pixels_over_one = 0; // pixels whose bound exceeds 1/255
-    double largest_omitted_weight = 0; // path weight of the heaviest ray not cast
+    double largest_omitted_weight = 0; // the largest of the pixels' summed omitted weights
 };
 
 CutoffBound cutoff_bound(const Scene& scene, const RenderResult& render);

@@ -89,13 +89,15 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoin
     }
 
     // Reflected and transmitted rays, each cast only while it can still matter: below
-    // max_depth, and while the path weight (this surface's factor included) stays at or above
-    // min_reflectivity; otherwise its weight is what the cut-off may have cost.
+    // max_depth, while the path weight (this surface's factor included) stays at or above
+    // min_reflectivity, and within the pixel's tree budget; otherwise its weight is what the
+    // cut-off may have cost.
     const RenderSettings& settings = world.settings();
     const auto follow = [&](Real factor, const Ray& next, std::uint32_t skip,
                             std::uint64_t& count) {
         const Real next_weight = weight * factor;
-        if (depth >= settings.max_depth || next_weight < settings.min_reflectivity) {
+        if (depth >= settings.max_depth || next_weight < settings.min_reflectivity ||
+            counts.reflection + counts.transmission >= kMaxTreeRays) {
             omitted_weight += next_weight;
             return;
         }
