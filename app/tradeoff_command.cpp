@@ -294,7 +294,8 @@ void write_csv(const std::vector<SceneResult>& results, const fs::path& path) {
            "min_reflectivity,accel,divisor,seconds_frame,seconds_total,seconds_prepare,"
            "seconds_context,seconds_compile,seconds_upload,seconds_raster,seconds_primary,"
            "seconds_shading,psnr_db,max_abs_error_255,fraction_over_1_255,id_agreement,"
-           "rays_primary,rays_shadow,rays_reflection,cutoff_bound_255,cutoff_bound_held,pareto\n";
+           "rays_primary,rays_shadow,rays_reflection,rays_transmission,cutoff_bound_255,cutoff_"
+           "bound_held,pareto\n";
     for (const SceneResult& sr : results) {
         const std::vector<std::size_t> front = pareto_front(sr.runs);
         for (std::size_t i = 0; i < sr.runs.size(); ++i) {
@@ -316,8 +317,8 @@ void write_csv(const std::vector<SceneResult>& results, const fs::path& path) {
                 << (std::isinf(r.diff.psnr_db) ? "inf" : format("%.3f", r.diff.psnr_db)) << ','
                 << r.diff.max_abs_error << ',' << r.diff.fraction_over_one << ','
                 << (r.agreement ? format("%.6f", *r.agreement) : "") << ',' << rays.primary << ','
-                << rays.shadow << ',' << rays.reflection << ',' << r.bound.max << ','
-                << (r.bound_held ? (*r.bound_held ? "yes" : "no") : "") << ','
+                << rays.shadow << ',' << rays.reflection << ',' << rays.transmission << ','
+                << r.bound.max << ',' << (r.bound_held ? (*r.bound_held ? "yes" : "no") : "") << ','
                 << (std::find(front.begin(), front.end(), i) != front.end() ? "yes" : "") << '\n';
         }
     }
