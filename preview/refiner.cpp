@@ -70,10 +70,7 @@ void RefineJob::trace_tile(const TileRect& rect) {
             const Hit& hit = sample.hit;
             std::uint8_t* p = final_.pixel(x, y);
             store_colour(sample.colour, p);
-            // Reflection is perfect: a pixel's reflection rays form one chain, so their number
-            // is its reflection depth.
-            const Rgb depth =
-                reflection_colour(static_cast<int>(sample.rays.reflection), max_depth);
+            const Rgb depth = reflection_colour(sample.depth, max_depth);
             std::copy(depth.begin(), depth.end(), reflections_.pixel(x, y));
             const Rgb normal = hit.found() ? normal_colour(glm::vec3(sample.normal)) : Rgb{0, 0, 0};
             std::copy(normal.begin(), normal.end(), normals_.pixel(x, y));

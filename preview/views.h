@@ -32,7 +32,8 @@ using Rgb = std::array<std::uint8_t, 3>;
 
 // A unit normal's components mapped from [−1, 1] to [0, 255].
 Rgb normal_colour(glm::vec3 normal);
-// Reflection depth 0 (dark blue) … max_depth (yellow) along one ramp.
+// A ray tree's depth (reflections and transmissions), 0 (dark blue) … max_depth (yellow) along
+// one ramp.
 Rgb reflection_colour(int depth, int max_depth);
 // The traced colour darkened to a third, or red where the hybrid and the ray primary hits name
 // different objects.

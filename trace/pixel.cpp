@@ -13,7 +13,7 @@ PixelSample shade_pixel(const World& world, const Ray& ray, const Hit& primary) 
     }
     const SurfacePoint surface = world.surface(ray, primary);
     sample.normal = surface.shading;
-    sample.colour = shade(world, ray, primary, surface, 0, 1, sample.rays, sample.omitted_weight);
+    sample.colour = shade(world, ray, primary, surface, 0, 1, sample);
     return sample;
 }
 

@@ -10,12 +10,12 @@
 namespace glint {
 inline namespace GLINT_PRECISION {
 
-struct PixelSample {
-    Vec3 colour{0};          // unclamped
-    Hit hit;                 // the primary hit (maybe none)
-    Vec3 normal{0};          // unit shading normal at the primary hit; zero where there is none
-    RayCounts rays;          // the primary ray and every ray shading cast
-    Real omitted_weight = 0; // trace/shading.h: the weight of the reflection not cast, or 0
+// A pixel's colour and what its path found: the ray tree's tallies (trace/shading.h) and the
+// primary hit, from which the preview's views are drawn.
+struct PixelSample : RayTree {
+    Vec3 colour{0}; // unclamped
+    Hit hit;        // the primary hit (maybe none)
+    Vec3 normal{0}; // unit shading normal at the primary hit; zero where there is none
 };
 
 // Shades a camera ray from its primary hit.

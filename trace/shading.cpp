@@ -1,14 +1,15 @@
 #include "trace/shading.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace glint {
 inline namespace GLINT_PRECISION {
 
 Vec3 shade(const World& world, const Ray& ray, const Hit& hit, int depth, Real weight,
-           RayCounts& counts, Real& omitted_weight) {
+           RayTree& tree) {
     if (!hit.found()) return world.background();
-    return shade(world, ray, hit, world.surface(ray, hit), depth, weight, counts, omitted_weight);
+    return shade(world, ray, hit, world.surface(ray, hit), depth, weight, tree);
 }
 
 namespace {
@@ -63,7 +64,8 @@ Real light_through(const World& world, const SurfacePoint& surface, Vec3 light, 
 // The lecture's sum, with §11's checker, shadows through glass and transmitted rays (62 lines:
 // the local terms and the two kinds of secondary ray share the weight rule and its counters).
 Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoint& surface,
-           int depth, Real weight, RayCounts& counts, Real& omitted_weight) {
+           int depth, Real weight, RayTree& tree) {
+    RayCounts& counts = tree.rays;
     const Phong& m = world.material(hit.object);
     const Vec3 n = surface.shading;
     const Vec3 v = -glm::normalize(ray.direction);
@@ -98,13 +100,13 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoin
         const Real next_weight = weight * factor;
         if (depth >= settings.max_depth || next_weight < settings.min_reflectivity ||
             counts.reflection + counts.transmission >= kMaxTreeRays) {
-            omitted_weight += next_weight;
+            tree.omitted_weight += next_weight;
             return;
         }
         ++count;
+        tree.depth = std::max(tree.depth, depth + 1);
         const Hit next_hit = world.intersect(next, kInfinity, skip);
-        colour +=
-            factor * shade(world, next, next_hit, depth + 1, next_weight, counts, omitted_weight);
+        colour += factor * shade(world, next, next_hit, depth + 1, next_weight, tree);
     };
     if (m.reflectivity > 0)
         follow(m.reflectivity, {surface.spawn(), reflect(ray.direction, n)}, surface.skip,
