@@ -12,7 +12,7 @@ namespace glint::testing {
 
 // The scenes in scenes/ (README's table), by name: every test over "each shipped scene" uses this.
 inline constexpr const char* kShippedScenes[] = {"default",    "mirrors",   "transforms", "shadows",
-                                                 "primitives", "instances", "whitted"};
+                                                 "primitives", "instances", "whitted",    "glass"};
 
 // scenes/<name>.json, at the given size (0: the scene's own).
 inline Scene shipped(const std::string& name, int width = 0, int height = 0) {
