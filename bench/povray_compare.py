@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """glint side by side with POV-Ray (Debian's povray 3.7) on an NFF scene.
 
-Converts the NFF file to POV-Ray's scene language with the camera, lights and Phong finish glint
-derives from it (docs/SCENES.md, "NFF scenes"), renders it with povray and with glint in both
+Converts the NFF file to POV-Ray's scene language with the camera, lights, Phong finish and
+transmission glint derives from it (docs/SCENES.md, "NFF scenes"), renders it with povray and with glint in both
 modes at the same size, without antialiasing, with the same number of threads, and prints wall
 times, their ratios and the image difference. POV-Ray's start-up (everything but parsing,
 bounding and tracing) is reported apart, as is glint's (load, GL context, shaders).
@@ -43,13 +43,13 @@ def nff_to_pov(path):
     """POV-Ray scene text for the NFF file, and its resolution."""
     t = tokens_of(path)
     num = lambda: float(next(t))
-    out, lights, textures, mesh = [], [], {}, []
+    out, lights, materials, mesh = [], [], {}, []
     current = None
     view = {}
 
     def flush():
         if mesh:
-            out.append("mesh {\n%s  texture { %s }\n}" % ("".join(mesh), current))
+            out.append("mesh {\n%s  material { %s }\n}" % ("".join(mesh), current))
             mesh.clear()
 
     for word in t:
@@ -70,32 +70,41 @@ def nff_to_pov(path):
             lights.append([p, None])
         elif word == "f":
             rgb = (num(), num(), num())
-            kd, ks, shine, _t, _ior = num(), num(), num(), num(), num()
-            key = (rgb, kd, ks, shine)
-            if key not in textures:
-                name = "F%d" % len(textures)
+            kd, ks, shine, transmission, ior = num(), num(), num(), num(), num()
+            key = (rgb, kd, ks, shine, transmission, ior)
+            if key not in materials:
+                name = "F%d" % len(materials)
                 # As glint maps f: diffuse Kd·rgb, white Phong highlight Ks with exponent shine,
-                # mirror reflection Ks, no ambient (NFF has none).
-                out.append("#declare %s = texture { pigment { rgb %s } finish { ambient 0 "
-                           "diffuse %.9g phong %.9g phong_size %.9g reflection { %.9g } } }"
-                           % (name, vec(rgb), kd, ks, shine, ks))
-                textures[key] = name
-            if textures[key] != current:
+                # mirror reflection Ks, no ambient (NFF has none); transmission T with index ior.
+                # POV-Ray's transmit scales the diffuse term by 1 − T, glint's does not
+                # (docs/SCENES.md, "materials"): the diffuse weight is divided by 1 − T to match.
+                # Its interior refracts (Snell, total internal reflection) as glint does.
+                colour = "rgb %s" % vec(rgb)
+                diffuse, interior = kd, ""
+                if transmission > 0:
+                    colour = "rgbt %s" % vec(rgb + (transmission,))
+                    diffuse = kd / max(1 - transmission, 1e-6)
+                    interior = " interior { ior %.9g }" % ior
+                out.append("#declare %s = material { texture { pigment { %s } finish { ambient 0 "
+                           "diffuse %.9g phong %.9g phong_size %.9g reflection { %.9g } } }%s }"
+                           % (name, colour, diffuse, ks, shine, ks, interior))
+                materials[key] = name
+            if materials[key] != current:
                 flush()
-                current = textures[key]
+                current = materials[key]
         elif word == "s":
             flush()
             c, r = (num(), num(), num()), abs(num())
-            out.append("sphere { %s, %.9g texture { %s } }" % (vec(c), r, current))
+            out.append("sphere { %s, %.9g material { %s } }" % (vec(c), r, current))
         elif word == "c":
             flush()
             b, rb = (num(), num(), num()), abs(num())
             a, ra = (num(), num(), num()), abs(num())
             if rb == ra:
-                out.append("cylinder { %s, %s, %.9g open texture { %s } }"
+                out.append("cylinder { %s, %s, %.9g open material { %s } }"
                            % (vec(b), vec(a), rb, current))
             else:
-                out.append("cone { %s, %.9g, %s, %.9g open texture { %s } }"
+                out.append("cone { %s, %.9g, %s, %.9g open material { %s } }"
                            % (vec(b), rb, vec(a), ra, current))
         elif word in ("p", "pp"):
             n = int(num())
@@ -115,7 +124,7 @@ def nff_to_pov(path):
                                     % (vec(pts[0]), vec(pts[i]), vec(pts[i + 1])))
             else:  # POV-Ray's polygon handles concave outlines (the gears)
                 flush()
-                out.append("polygon { %d, %s texture { %s } }"
+                out.append("polygon { %d, %s material { %s } }"
                            % (n + 1, ", ".join(vec(p) for p in pts + pts[:1]), current))
         else:
             sys.exit("%s: entity %r is not converted" % (path, word))
@@ -194,6 +203,27 @@ def difference(a, b):
     return total / len(x), off / (w * h)
 
 
+def write_difference_map(a, b, path):
+    """A PNG of image b at a third of its brightness, red where it differs from a by > 8/255."""
+    (w, h, x), (_, _, y) = read_png(a), read_png(b)
+    rows = bytearray()
+    for j in range(h):
+        rows.append(0)  # filter type: none
+        for p in range(3 * w * j, 3 * w * (j + 1), 3):
+            if max(abs(x[p + c] - y[p + c]) for c in range(3)) > 8:
+                rows += b"\xff\x00\x00"
+            else:
+                rows += bytes(v // 3 for v in y[p:p + 3])
+
+    def chunk(kind, data):
+        return (struct.pack(">I", len(data)) + kind + data
+                + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF))
+
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0))
+                + chunk(b"IDAT", zlib.compress(bytes(rows))) + chunk(b"IEND", b""))
+
+
 def pov_seconds(log, name):
     for line in log.splitlines():
         if line.strip().startswith(name) and "(" in line:
@@ -235,7 +265,8 @@ def main():
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--glint", default=os.path.join(ROOT, "build", "app", "glint"))
-    ap.add_argument("--keep", help="keep the .pov files and images in this directory")
+    ap.add_argument("--keep", help="keep the .pov files and images in this directory, and a map "
+                    "of where glint's ray-mode image differs from POV-Ray's by > 8/255")
     ap.add_argument("--markdown", action="store_true", help="print one table row per scene")
     args = ap.parse_args()
     if not shutil.which("povray"):
@@ -260,6 +291,9 @@ def main():
         med = {k: {f: statistics.median(r[f] for r in v) for f in v[0]} for k, v in runs.items()}
         p = med["povray"]
         diffs = {m: difference(images["povray"], images[m]) for m in ("hybrid", "ray")}
+        if args.keep:
+            write_difference_map(images["povray"], images["ray"],
+                                 os.path.join(work, name + "-difference.png"))
         if args.markdown:
             print("| %s | %dx%d | %.2f (%.2f + %.2f) | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f%% |" % (
                 name, width, height, p["wall"], p["startup"], p["parse"] + p["trace"],
