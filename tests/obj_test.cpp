@@ -149,12 +149,33 @@ TEST(Obj, MtlIllumAndDissolveMapToReflectionAndTransmission) {
     }
 }
 
-TEST(Obj, NegativeIndicesCountBackAndAMissingLibraryIsANote) {
-    const ObjModel model = parse("mtllib nowhere.mtl\n" + kTri + "usemtl x\nf -3 -2 -1\n");
+TEST(Obj, NegativeIndicesCountBack) {
+    const ObjModel model = parse(kTri + "f -3 -2 -1\n");
     ASSERT_EQ(model.parts.size(), 1u);
     EXPECT_EQ(model.parts[0].mesh.triangles.size(), 1u);
-    ASSERT_EQ(model.notes.size(), 1u);
-    EXPECT_NE(model.notes[0].find("'nowhere.mtl' cannot be read"), std::string::npos);
+}
+
+// A material library that is missing or malformed is an error naming the file and line, as a
+// bad OBJ line is (issue: "a missing or malformed .mtl: exit 2 with the file and the line").
+TEST(Obj, AMissingOrMalformedMaterialLibraryNamesItsFileAndLine) {
+    const auto error = [](const std::string& obj, const std::optional<std::string>& mtl) {
+        try {
+            parse_obj(obj, "dir/m.obj", [&](const std::string&) { return mtl; });
+        } catch (const SceneError& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    const std::string obj = kTri + "mtllib m.mtl\nusemtl x\nf 1 2 3\n";
+    EXPECT_EQ(error(obj, std::nullopt), "dir/m.obj:4: material library 'm.mtl' cannot be read");
+    EXPECT_EQ(error(obj, "newmtl x\nKd 1 0.5 zero\n"),
+              "dir/m.mtl:2: expected a number in Kd, got 'zero'");
+    EXPECT_EQ(error(obj, "newmtl x\nKd 1 1\n"), "dir/m.mtl:2: Kd needs 3 numbers, got 2");
+    EXPECT_EQ(error(obj, "# a comment\nKd 1 1 1\n"), "dir/m.mtl:2: Kd before any newmtl");
+    EXPECT_EQ(error(obj, "newmtl x\nglossiness 3\n"),
+              "dir/m.mtl:2: unknown MTL statement 'glossiness'");
+    EXPECT_EQ(error(obj, "newmtl\n"), "dir/m.mtl:1: newmtl needs a material name");
+    EXPECT_EQ(error(obj, "newmtl x\nKd 1 1 1\nmap_Kd wood.png\nNs 10 # shiny\r\n"), "accepted");
 }
 
 TEST(Obj, TinyobjloaderReadsOnlyTheStatementsThatWereChecked) {

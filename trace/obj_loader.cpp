@@ -1,8 +1,8 @@
 // OBJ through tinyobjloader. tinyobjloader is lenient: a number it cannot read becomes 0, an
 // index beyond the vertices is only a warning, and a face's vertex count is kept in a byte. So
 // every line is checked here first, and an error names the line; tinyobjloader then reads the
-// checked text and its MTL materials. Faces are triangulated by ear clipping (trace/polygon.h):
-// tinyobjloader's own triangulation is a fan, wrong for concave faces.
+// checked text and its checked MTL libraries. Faces are triangulated by ear clipping
+// (trace/polygon.h): tinyobjloader's own triangulation is a fan, wrong for concave faces.
 #include "trace/obj_loader.h"
 
 #include "trace/polygon.h"
@@ -42,10 +42,12 @@ std::vector<std::string_view> split(std::string_view line) {
     return words;
 }
 
-// Checks every line; collects the material libraries named and what will be ignored.
+// Checks every line of a text, statement by statement (`statement`, the format's own), and keeps
+// what it checked for tinyobjloader to read.
 class LineChecker {
   public:
     explicit LineChecker(std::string name) : name_(std::move(name)) {}
+    virtual ~LineChecker() = default;
 
     void check(const std::string& text) {
         std::size_t start = 0;
@@ -67,18 +69,19 @@ class LineChecker {
             clean += '\n';
             start = end + 1;
         }
-        if (faces_ == 0) fail(line, "no faces (f): an OBJ mesh needs at least one");
+        finish(line);
     }
 
-    std::vector<std::string> libraries;
-    std::size_t lines_and_points = 0;
     // The text as checked, line for line: comments cut and '\r' blanked. tinyobjloader reads
     // this, not the file, so that it sees exactly the statements checked here (it takes '#'
     // as a comment only at the start of a line, and a lone '\r' as a line break: a face after
     // "1#" or a '\r' in a group name once reached it unchecked, found by fuzz_obj).
     std::string clean;
 
-  private:
+  protected:
+    virtual void statement(const std::vector<std::string_view>& words, int line) = 0;
+    virtual void finish(int /*last_line*/) {}
+
     [[noreturn]] void fail(int line, const std::string& message) const {
         throw SceneError(name_ + ":" + std::to_string(line) + ": " + message);
     }
@@ -97,6 +100,24 @@ class LineChecker {
             if (position && i <= 3 && std::abs(v) > kMaxCoordinate)
                 fail(line, "coordinate beyond 1e15, too large for float");
         }
+    }
+
+  private:
+    std::string name_;
+};
+
+// An OBJ file's lines; collects the material libraries it names and what will be ignored.
+class ObjChecker : public LineChecker {
+  public:
+    using LineChecker::fail;
+    using LineChecker::LineChecker;
+
+    std::vector<std::pair<std::string, int>> libraries; // as named, with their mtllib line
+    std::size_t lines_and_points = 0;
+
+  private:
+    void finish(int last_line) override {
+        if (faces_ == 0) fail(last_line, "no faces (f): an OBJ mesh needs at least one");
     }
 
     // One index of a face corner: 1..count, or −count..−1 counting back from the last.
@@ -140,7 +161,7 @@ class LineChecker {
         ++faces_;
     }
 
-    void statement(const std::vector<std::string_view>& w, int line) {
+    void statement(const std::vector<std::string_view>& w, int line) override {
         if (w.empty()) return;
         const std::string_view k = w[0];
         if (k == "v") {
@@ -157,7 +178,7 @@ class LineChecker {
         } else if (k == "l" || k == "p") {
             ++lines_and_points;
         } else if (k == "mtllib") {
-            for (std::size_t i = 1; i < w.size(); ++i) libraries.emplace_back(w[i]);
+            for (std::size_t i = 1; i < w.size(); ++i) libraries.emplace_back(w[i], line);
         } else if (k == "usemtl") {
             if (w.size() < 2) fail(line, "usemtl needs a material name");
         } else if (std::find(kIgnored.begin(), kIgnored.end(), k) == kIgnored.end()) {
@@ -165,8 +186,45 @@ class LineChecker {
         }
     }
 
-    std::string name_;
     std::size_t vertices_ = 0, normals_ = 0, texcoords_ = 0, faces_ = 0;
+};
+
+// MTL statements glint reads (docs/SCENES.md, "OBJ"), and those it reads past: texture maps
+// (glint has no textures), emission, and the PBR extension's parameters.
+constexpr std::array<std::string_view, 5> kMtlColours = {"Ka", "Kd", "Ks", "Ke", "Tf"};
+constexpr std::array<std::string_view, 13> kMtlNumbers = {
+    "Ns", "Ni", "d", "Tr", "illum", "sharpness", "Pr", "Pm", "Ps", "Pc", "Pcr", "aniso", "anisor"};
+constexpr std::array<std::string_view, 16> kMtlMaps = {
+    "map_Ka", "map_Kd", "map_Ks", "map_Ke", "map_Ns", "map_d",  "map_Tr", "map_bump",
+    "bump",   "disp",   "decal",  "refl",   "map_Pr", "map_Pm", "map_Ps", "norm"};
+
+// An MTL library's lines: each statement known, with its numbers, inside a newmtl.
+class MtlChecker : public LineChecker {
+  public:
+    using LineChecker::LineChecker;
+
+  private:
+    static bool in(std::string_view k, const auto& set) {
+        return std::find(set.begin(), set.end(), k) != set.end();
+    }
+
+    void statement(const std::vector<std::string_view>& w, int line) override {
+        if (w.empty()) return;
+        const std::string_view k = w[0];
+        if (k == "newmtl") {
+            if (w.size() < 2) fail(line, "newmtl needs a material name");
+            named_ = true;
+            return;
+        }
+        const bool colour = in(k, kMtlColours), number = in(k, kMtlNumbers);
+        if (!colour && !number && !in(k, kMtlMaps))
+            fail(line, "unknown MTL statement '" + std::string(k.substr(0, 40)) + "'");
+        if (!named_) fail(line, std::string(k) + " before any newmtl");
+        if (colour) numbers(w, line, 3, 3, false); // r g b (not spectral or xyz)
+        if (number) numbers(w, line, 1, 1, false);
+    }
+
+    bool named_ = false;
 };
 
 glm::vec3 mtl_colour(const tinyobj::real_t (&c)[3], const std::string& what,
@@ -217,16 +275,16 @@ struct PartBuilder {
 
 ObjModel parse_obj(const std::string& text, const std::string& name,
                    const std::function<std::optional<std::string>(const std::string&)>& read_mtl) {
-    LineChecker checker(name);
+    ObjChecker checker(name);
     checker.check(text);
     ObjModel model;
     std::string mtl_text;
-    for (const std::string& library : checker.libraries) {
-        if (const auto t = read_mtl(library))
-            mtl_text += *t + "\n";
-        else
-            model.notes.push_back(name + ": material library '" + library +
-                                  "' cannot be read; its faces get the default material");
+    for (const auto& [library, line] : checker.libraries) {
+        const auto t = read_mtl(library);
+        if (!t) checker.fail(line, "material library '" + library + "' cannot be read");
+        MtlChecker mtl((std::filesystem::path(name).parent_path() / library).string());
+        mtl.check(*t);
+        mtl_text += mtl.clean;
     }
     if (checker.lines_and_points > 0)
         model.notes.push_back(name + ": " + std::to_string(checker.lines_and_points) +
