@@ -169,12 +169,12 @@ TEST(Obj, AMissingOrMalformedMaterialLibraryNamesItsFileAndLine) {
     const std::string obj = kTri + "mtllib m.mtl\nusemtl x\nf 1 2 3\n";
     EXPECT_EQ(error(obj, std::nullopt), "dir/m.obj:4: material library 'm.mtl' cannot be read");
     EXPECT_EQ(error(obj, "newmtl x\nKd 1 0.5 zero\n"),
-              "dir/m.mtl:2: expected a number in Kd, got 'zero'");
-    EXPECT_EQ(error(obj, "newmtl x\nKd 1 1\n"), "dir/m.mtl:2: Kd needs 3 numbers, got 2");
-    EXPECT_EQ(error(obj, "# a comment\nKd 1 1 1\n"), "dir/m.mtl:2: Kd before any newmtl");
+              "dir/m.obj: dir/m.mtl:2: expected a number in Kd, got 'zero'");
+    EXPECT_EQ(error(obj, "newmtl x\nKd 1 1\n"), "dir/m.obj: dir/m.mtl:2: Kd needs 3 numbers, got 2");
+    EXPECT_EQ(error(obj, "# a comment\nKd 1 1 1\n"), "dir/m.obj: dir/m.mtl:2: Kd before any newmtl");
     EXPECT_EQ(error(obj, "newmtl x\nglossiness 3\n"),
-              "dir/m.mtl:2: unknown MTL statement 'glossiness'");
-    EXPECT_EQ(error(obj, "newmtl\n"), "dir/m.mtl:1: newmtl needs a material name");
+              "dir/m.obj: dir/m.mtl:2: unknown MTL statement 'glossiness'");
+    EXPECT_EQ(error(obj, "newmtl\n"), "dir/m.obj: dir/m.mtl:1: newmtl needs a material name");
     EXPECT_EQ(error(obj, "newmtl x\nKd 1 1 1\nmap_Kd wood.png\nNs 10 # shiny\r\n"), "accepted");
 }
 

@@ -282,7 +282,9 @@ ObjModel parse_obj(const std::string& text, const std::string& name,
     for (const auto& [library, line] : checker.libraries) {
         const auto t = read_mtl(library);
         if (!t) checker.fail(line, "material library '" + library + "' cannot be read");
-        MtlChecker mtl((std::filesystem::path(name).parent_path() / library).string());
+        // Named after the OBJ that uses it, as the OBJ is after the scene: "m.obj: m.mtl:2: …".
+        MtlChecker mtl(name + ": " +
+                       (std::filesystem::path(name).parent_path() / library).string());
         mtl.check(*t);
         mtl_text += mtl.clean;
     }
