@@ -22,9 +22,17 @@ class PinholeCamera {
     }
 
     // The ray through the centre of pixel (i, j), j = 0 the top row; origin at the eye.
-    Ray ray(int i, int j) const {
-        const Real x = 2.0_r * (static_cast<Real>(i) + 0.5_r) / static_cast<Real>(width_) - 1.0_r;
-        const Real y = 1.0_r - 2.0_r * (static_cast<Real>(j) + 0.5_r) / static_cast<Real>(height_);
+    Ray ray(int i, int j) const { return sample_ray(i, j, 0, 0, 1); }
+
+    // Sample (a, b) of pixel (i, j)'s n×n grid (DESIGN §11): i + (a + 0.5)/n in place of
+    // i + 0.5, and j + (b + 0.5)/n in place of j + 0.5. (a + 0.5)/n is exactly 0.5 for the
+    // centre of an odd grid, so that sample's ray is the pixel centre's, bit for bit.
+    Ray sample_ray(int i, int j, int a, int b, int n) const {
+        const Real fn = static_cast<Real>(n);
+        const Real u = static_cast<Real>(i) + (static_cast<Real>(a) + 0.5_r) / fn;
+        const Real v = static_cast<Real>(j) + (static_cast<Real>(b) + 0.5_r) / fn;
+        const Real x = 2.0_r * u / static_cast<Real>(width_) - 1.0_r;
+        const Real y = 1.0_r - 2.0_r * v / static_cast<Real>(height_);
         return {Vec3(0.0_r), glm::normalize(forward_ + x * right_ + y * up_)};
     }
 

@@ -8,6 +8,7 @@ PixelSample shade_pixel(const World& world, const Ray& ray, const Hit& primary) 
     sample.hit = primary;
     ++sample.rays.primary;
     if (!primary.found()) {
+        sample.note(0);
         sample.colour = world.background();
         return sample;
     }

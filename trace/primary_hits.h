@@ -47,6 +47,10 @@ struct PrimaryStats {
 struct PrimarySource {
     const IdImage* ids = nullptr;
     Resolve resolve = Resolve::exact;
+    // With N×N samples per pixel (trace/sampling.h): the id image of the sample grid, N·width ×
+    // N·height, sample (a, b) of pixel (i, j) at (N·i + a, N·j + b); `ids` is then the pixel
+    // centres' (adaptive antialiasing's first pass), or null.
+    const IdImage* sample_ids = nullptr;
 };
 
 // Resolves pixel (x, y), whose camera ray is `ray`, from `ids`, counting into `stats`.

@@ -1,7 +1,7 @@
 #include "trace/render.h"
 
 #include "trace/image_metrics.h"
-
+#include "trace/sampling.h"
 #include "trace/stopwatch.h"
 
 #include <mutex>
@@ -10,11 +10,12 @@ namespace glint {
 inline namespace GLINT_PRECISION {
 
 RenderResult shade_image(const World& world, const std::vector<Hit>& primary,
-                         const TileProgress& progress) {
+                         const TileProgress& progress, std::vector<std::uint64_t>* path_keys) {
     const PinholeCamera& camera = world.camera();
     const int width = camera.width();
-    RenderResult result{Image(width, camera.height()), {}, {}, object_ids(primary)};
+    RenderResult result{Image(width, camera.height()), {}, {}, object_ids(primary), {}};
     result.omitted_weight.assign(primary.size(), 0.0f);
+    if (path_keys) path_keys->assign(primary.size(), 0);
     std::mutex counts_mutex;
     for_each_tile(width, camera.height(), progress, [&](int x0, int y0, int x1, int y1) {
         RayCounts counts;
@@ -23,6 +24,7 @@ RenderResult shade_image(const World& world, const std::vector<Hit>& primary,
                 const std::size_t i = static_cast<std::size_t>(y) * width + x;
                 const PixelSample sample = shade_pixel(world, camera.ray(x, y), primary[i]);
                 result.omitted_weight[i] = static_cast<float>(sample.omitted_weight);
+                if (path_keys) (*path_keys)[i] = sample.path_key;
                 store_colour(sample.colour, result.image.pixel(x, y));
                 counts += sample.rays;
             }
@@ -34,7 +36,9 @@ RenderResult shade_image(const World& world, const std::vector<Hit>& primary,
 }
 
 RenderResult render(const World& world, const TileProgress& progress) {
-    return shade_image(world, primary_hits_by_ray(world, progress), progress);
+    PrimaryStats unused;
+    PhaseTimes times;
+    return trace_frame(world, {}, unused, progress, times);
 }
 
 std::vector<std::uint32_t> object_ids(const std::vector<Hit>& primary) {
@@ -46,9 +50,37 @@ std::vector<std::uint32_t> object_ids(const std::vector<Hit>& primary) {
 
 RenderResult trace_frame(const World& world, const PrimarySource& source, PrimaryStats& stats,
                          const TileProgress& progress, PhaseTimes& times) {
+    const RenderSettings& settings = world.settings();
+    const PinholeCamera& camera = world.camera();
+    if (settings.samples > 1 && settings.antialias == Antialias::uniform) {
+        RenderResult result{Image(camera.width(), camera.height()), {}, {}, {}, {}};
+        const std::size_t pixels = static_cast<std::size_t>(camera.width()) * camera.height();
+        result.omitted_weight.assign(pixels, 0.0f);
+        result.ids.assign(pixels, 0);
+        supersample(world, source, nullptr, result, stats, progress, times);
+        return result;
+    }
+    // One sample per pixel, at its centre: the whole image with N = 1, and adaptive
+    // antialiasing's first pass.
+    const bool adaptive = settings.samples > 1;
     const std::vector<Hit> primary =
         timed(times.primary, [&] { return primary_hits(world, source, stats, progress); });
-    return timed(times.shading, [&] { return shade_image(world, primary, progress); });
+    std::vector<std::uint64_t> path_keys;
+    RenderResult result = timed(times.shading, [&] {
+        return shade_image(world, primary, progress, adaptive ? &path_keys : nullptr);
+    });
+    if (!adaptive) return result;
+    result.refined = timed(times.shading, [&] {
+        return adaptive_refinement(result.image, path_keys, source.sample_ids, settings.samples,
+                                   settings.aa_threshold);
+    });
+    supersample(world, source, &result.refined, result, stats, progress, times);
+    return result;
+}
+
+int progress_steps(const RenderSettings& settings, int width, int height) {
+    const bool adaptive = settings.samples > 1 && settings.antialias == Antialias::adaptive;
+    return (adaptive ? 4 : 2) * tile_count(width, height);
 }
 
 RenderResult render_ray_frame(const Scene& scene, std::optional<AccelKind> accel,

@@ -15,16 +15,23 @@ inline void store_colour(Vec3 c, std::uint8_t* pixel) {
 }
 
 // Shades the pixels whose primary hits are given (row-major, top row first), each through
-// trace/pixel.h's path.
+// trace/pixel.h's path, one sample at each pixel's centre; with `path_keys`, also stores each
+// pixel's RayTree::path_key there.
 RenderResult shade_image(const World& world, const std::vector<Hit>& primary,
-                         const TileProgress& progress = {});
+                         const TileProgress& progress = {},
+                         std::vector<std::uint64_t>* path_keys = nullptr);
 
 // The tracer's part of every frame: primary hits from `source`, then shading, each phase timed
-// into `times` (frame/frame.h draws the item buffer before it in hybrid mode).
+// into `times` (frame/frame.h draws the item buffer before it in hybrid mode), with the scene's
+// antialiasing (trace/sampling.h): N = 1, the pixel centres; uniform, every pixel's N×N grid
+// (hybrid: source.sample_ids); adaptive, the centres, then the grid where the rule says.
 RenderResult trace_frame(const World& world, const PrimarySource& source, PrimaryStats& stats,
                          const TileProgress& progress, PhaseTimes& times);
 
-// Ray mode in one call: primary hits by ray casting, then shading.
+// How many steps TileProgress::tiles_done counts to in a trace_frame of this size.
+int progress_steps(const RenderSettings& settings, int width, int height);
+
+// Ray mode in one call: primary hits by ray casting, then shading, with the scene's samples.
 RenderResult render(const World& world, const TileProgress& progress = {});
 
 // Object index + 1 per pixel, 0 where the primary ray hit nothing.

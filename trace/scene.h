@@ -83,11 +83,27 @@ struct SceneObject {
     std::uint32_t mesh = 0;  // index into Scene::meshes for triangles and meshes
 };
 
+// Antialiasing (DESIGN §11, docs/ANTIALIASING.md): every pixel the mean of its N×N sample grid,
+// or the grid only where the adaptive rule finds an edge and the pixel centre elsewhere.
+enum class Antialias : std::uint8_t { uniform, adaptive };
+
+template <> struct EnumNames<Antialias> {
+    static constexpr auto names = name_table("uniform", "adaptive");
+};
+
+inline constexpr int kMaxSamples = 16; // per side of a pixel's sample grid
+// The adaptive rule's contrast threshold: the largest channel difference (0…1) between a pixel's
+// and a neighbour's one-sample colours that still leaves the pixel unrefined.
+inline constexpr float kDefaultAaThreshold = 0.02f;
+
 struct RenderSettings {
     int max_depth = 5;
     // The smallest path weight (product of the reflectivities and transmissions along the path)
     // for which a reflected or transmitted ray is still cast; the scene file's `min_weight`.
     float min_reflectivity = 0.01f;
+    int samples = 1; // N: an N×N grid of samples in every pixel
+    Antialias antialias = Antialias::uniform;
+    float aa_threshold = kDefaultAaThreshold;
 };
 
 struct Scene {

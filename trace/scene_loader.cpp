@@ -267,8 +267,18 @@ class Loader {
     }
 
     RenderSettings render(const Node& node) const {
-        expect_object(node, {"max_depth", "min_weight", "min_reflectivity"});
+        expect_object(node, {"max_depth", "min_weight", "min_reflectivity", "samples", "antialias",
+                             "aa_threshold"});
         RenderSettings r;
+        if (has(node, "samples")) r.samples = integer_in(node.child("samples"), 1, kMaxSamples);
+        if (has(node, "antialias")) {
+            const Node aa = node.child("antialias");
+            const std::optional<Antialias> kind = from_name<Antialias>(string(aa));
+            if (!kind) fail(aa, "expected uniform or adaptive");
+            r.antialias = *kind;
+        }
+        if (has(node, "aa_threshold"))
+            r.aa_threshold = static_cast<float>(number_in(node.child("aa_threshold"), 0, 1));
         if (has(node, "max_depth")) r.max_depth = integer_in(node.child("max_depth"), 0, kMaxDepth);
         // min_reflectivity is the name from before transmission; both mean the same.
         if (has(node, "min_weight") && has(node, "min_reflectivity"))

@@ -8,7 +8,10 @@ inline namespace GLINT_PRECISION {
 
 Vec3 shade(const World& world, const Ray& ray, const Hit& hit, int depth, Real weight,
            RayTree& tree) {
-    if (!hit.found()) return world.background();
+    if (!hit.found()) {
+        tree.note(0);
+        return world.background();
+    }
     return shade(world, ray, hit, world.surface(ray, hit), depth, weight, tree);
 }
 
@@ -74,13 +77,17 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoin
                               shape_traits(world.objects()[hit.object].shape).checker_in_plane);
     const Vec3 diffuse = odd ? m.checker_diffuse : m.diffuse;
     const Vec3 ambient = odd ? m.checker_ambient : m.ambient;
+    tree.note((static_cast<std::uint64_t>(hit.object) + 1) * 2 + (odd ? 1 : 0));
 
     Vec3 colour = ambient * world.ambient();
     for (const Light& light : world.lights()) {
         const Vec3 l = glm::normalize(light.position - surface.position);
         const Real n_dot_l = glm::dot(n, l);
         if (n_dot_l <= 0) continue; // the light is behind the surface
+        const std::uint64_t shadow_rays = counts.shadow;
         const Real through = light_through(world, surface, light.position, counts);
+        // The verdict: blocked, or how many segments (1 + glass crossings) reached the light.
+        tree.note(through == 0 ? ~std::uint64_t{0} : counts.shadow - shadow_rays);
         if (through == 0) continue;
         Vec3 lit = diffuse * n_dot_l;
         if (m.specular != Vec3(0.0_r)) { // pow is dear, and NFF's matte surfaces have 1e5

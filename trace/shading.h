@@ -22,6 +22,16 @@ struct RayTree {
     // min_reflectivity or kMaxTreeRays kept from being cast (trace/cutoff.h).
     Real omitted_weight = 0;
     int depth = 0; // the deepest level it cast a ray at (0: the primary ray alone)
+    // What the tree met, in the order it met it: each hit's object (or the background) and
+    // checker cell parity, and each light's shadow verdict (lit, blocked, or the number of glass
+    // segments it passed). Two pixels whose keys differ see different things along their paths:
+    // the adaptive antialiasing rule (trace/sampling.h) refines them.
+    std::uint64_t path_key = 0;
+
+    void note(std::uint64_t event) {
+        path_key = (path_key + event + 0x9e3779b97f4a7c15u) * 0xff51afd7ed558ccdu;
+        path_key ^= path_key >> 32;
+    }
 };
 
 // Colour seen along `ray` (unclamped), which has already produced `hit` (maybe none).

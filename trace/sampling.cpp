@@ -1,0 +1,148 @@
+#include "trace/sampling.h"
+
+#include "trace/render.h"
+#include "trace/stopwatch.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <mutex>
+
+namespace glint {
+inline namespace GLINT_PRECISION {
+
+namespace {
+
+bool contrasts(const std::uint8_t* p, const std::uint8_t* q, int limit) {
+    for (int c = 0; c < 3; ++c)
+        if (std::abs(int(p[c]) - int(q[c])) > limit) return true;
+    return false;
+}
+
+// Whether the n×n ids of pixel (x, y) in the sample grid's id image are not all one id.
+bool mixed_ids(const IdImage& samples, int x, int y, int n) {
+    const std::uint32_t first =
+        samples.ids[static_cast<std::size_t>(y) * n * samples.width + std::size_t(x) * n];
+    for (int b = 0; b < n; ++b) {
+        const std::uint32_t* row =
+            &samples
+                 .ids[(static_cast<std::size_t>(y) * n + b) * samples.width + std::size_t(x) * n];
+        for (int a = 0; a < n; ++a)
+            if (row[a] != first) return true;
+    }
+    return false;
+}
+
+} // namespace
+
+std::vector<std::uint8_t> adaptive_refinement(const Image& first,
+                                              const std::vector<std::uint64_t>& path_keys,
+                                              const IdImage* sample_ids, int n, float threshold) {
+    const int width = first.width, height = first.height;
+    // Bytes differ by more than threshold·255 (a threshold of 0 refines any difference at all).
+    const int limit = static_cast<int>(std::floor(threshold * 255.0f + 1e-4f));
+    std::vector<std::uint8_t> refine(static_cast<std::size_t>(width) * height, 0);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const std::size_t p = static_cast<std::size_t>(y) * width + x;
+            bool edge = sample_ids && mixed_ids(*sample_ids, x, y, n);
+            for (int dy = -1; dy <= 1 && !edge; ++dy) {
+                for (int dx = -1; dx <= 1 && !edge; ++dx) {
+                    const int qx = x + dx, qy = y + dy;
+                    if (qx < 0 || qy < 0 || qx >= width || qy >= height) continue;
+                    const std::size_t q = static_cast<std::size_t>(qy) * width + qx;
+                    edge = path_keys[q] != path_keys[p] ||
+                           contrasts(first.pixel(x, y), first.pixel(qx, qy), limit);
+                }
+            }
+            refine[p] = edge ? 1 : 0;
+        }
+    }
+    return refine;
+}
+
+void grid_hits(const World& world, const PrimarySource& source, int x, int y, Hit* hits,
+               PrimaryStats& stats) {
+    const PinholeCamera& camera = world.camera();
+    const int n = world.settings().samples;
+    for (int b = 0; b < n; ++b) {
+        for (int a = 0; a < n; ++a) {
+            const Ray ray = camera.sample_ray(x, y, a, b, n);
+            *hits++ = source.sample_ids ? resolve_pixel(world, *source.sample_ids, source.resolve,
+                                                        x * n + a, y * n + b, ray, stats)
+                                        : world.intersect(ray);
+        }
+    }
+}
+
+GridPixel shade_grid(const World& world, int x, int y, const Hit* hits) {
+    const PinholeCamera& camera = world.camera();
+    const int n = world.settings().samples;
+    const Real inverse_count = 1 / static_cast<Real>(n * n);
+    GridPixel pixel;
+    Vec3 sum(0);
+    Real omitted = 0;
+    for (int b = 0; b < n; ++b) {
+        for (int a = 0; a < n; ++a) {
+            const PixelSample sample =
+                shade_pixel(world, camera.sample_ray(x, y, a, b, n), *hits++);
+            sum += glm::clamp(sample.colour, Vec3(0), Vec3(1));
+            omitted += sample.omitted_weight;
+            pixel.rays += sample.rays;
+            if (a == n / 2 && b == n / 2)
+                pixel.centre_id = sample.hit.found() ? sample.hit.object + 1 : 0;
+        }
+    }
+    pixel.mean = sum * inverse_count;
+    pixel.omitted_weight = omitted * inverse_count;
+    return pixel;
+}
+
+void supersample(const World& world, const PrimarySource& source,
+                 const std::vector<std::uint8_t>* only, RenderResult& result, PrimaryStats& stats,
+                 const TileProgress& progress, PhaseTimes& times) {
+    const PinholeCamera& camera = world.camera();
+    const int width = camera.width(), n = world.settings().samples;
+    const std::size_t grid = static_cast<std::size_t>(n) * n;
+    std::mutex mutex;
+    double primary_seconds = 0, shading_seconds = 0; // summed over tiles, all threads
+    const Stopwatch wall;
+    for_each_tile(width, camera.height(), progress, [&](int x0, int y0, int x1, int y1) {
+        Stopwatch watch;
+        PrimaryStats local_stats;
+        std::vector<std::size_t> pixels; // the tile's pixels to sample, in row order
+        std::vector<Hit> hits;           // their grids' primary hits, one grid after another
+        for (int y = y0; y < y1; ++y) {
+            for (int x = x0; x < x1; ++x) {
+                const std::size_t i = static_cast<std::size_t>(y) * width + x;
+                if (only && !(*only)[i]) continue;
+                pixels.push_back(i);
+                hits.resize(hits.size() + grid);
+                grid_hits(world, source, x, y, &hits[hits.size() - grid], local_stats);
+            }
+        }
+        const double primary = watch.lap();
+        RayCounts counts;
+        for (std::size_t k = 0; k < pixels.size(); ++k) {
+            const std::size_t i = pixels[k];
+            const int x = static_cast<int>(i % width), y = static_cast<int>(i / width);
+            const GridPixel pixel = shade_grid(world, x, y, &hits[k * grid]);
+            store_colour(pixel.mean, result.image.pixel(x, y));
+            result.omitted_weight[i] = static_cast<float>(pixel.omitted_weight);
+            if (!only) result.ids[i] = pixel.centre_id;
+            counts += pixel.rays;
+        }
+        const double shading = watch.lap();
+        const std::lock_guard lock(mutex); // integer sums: order does not matter
+        result.rays += counts;
+        stats += local_stats;
+        primary_seconds += primary, shading_seconds += shading;
+        if (progress.tiles_done) progress.tiles_done->fetch_add(1, std::memory_order_relaxed);
+    });
+    const double seconds = wall.seconds(), busy = primary_seconds + shading_seconds;
+    const double primary_share = busy > 0 ? primary_seconds / busy : 0;
+    times.primary += seconds * primary_share;
+    times.shading += seconds * (1 - primary_share);
+}
+
+} // namespace GLINT_PRECISION
+} // namespace glint

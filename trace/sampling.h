@@ -1,0 +1,52 @@
+// Antialiasing (DESIGN §11, docs/ANTIALIASING.md): the N×N grid of samples in a pixel, each
+// through the one pixel path (trace/pixel.h), and the adaptive rule that decides which pixels
+// need the grid.
+#pragma once
+
+#include "trace/pixel.h"
+
+#include <vector>
+
+namespace glint {
+inline namespace GLINT_PRECISION {
+
+// The adaptive rule, from a first pass of one sample per pixel (the pixel centre, N = 1's image):
+// pixel p takes its N×N grid when
+//   1. any of its 8 neighbours q has another path key (trace/shading.h's RayTree::path_key: a
+//      different object, background or checker cell along the path, or another shadow
+//      verdict), or
+//   2. any channel of p's and q's bytes differs by more than threshold · 255, or
+//   3. (hybrid) the N×N item buffer's ids inside p are not all one id: an edge, or an object too
+//      thin for the pixel centre to see, falls inside the pixel.
+// Rules 1 and 2 read only the first pass, which exact hybrid and ray mode trace alike; rule 3
+// only adds pixels. `sample_ids` is the N×N item buffer (N·width × N·height), or null.
+std::vector<std::uint8_t> adaptive_refinement(const Image& first,
+                                              const std::vector<std::uint64_t>& path_keys,
+                                              const IdImage* sample_ids, int n, float threshold);
+
+// The primary hits of pixel (x, y)'s N×N samples (N = world.settings().samples) into hits[0…N²),
+// b outer, a inner: from source.sample_ids when given, else by camera ray.
+void grid_hits(const World& world, const PrimarySource& source, int x, int y, Hit* hits,
+               PrimaryStats& stats);
+
+// A pixel from its grid: each sample shaded through trace/pixel.h's path, its colour clamped to
+// [0, 1], the clamped colours summed row of samples by row and divided by N².
+struct GridPixel {
+    Vec3 mean{0};
+    RayCounts rays;
+    Real omitted_weight = 0;     // the samples' mean (trace/cutoff.h)
+    std::uint32_t centre_id = 0; // sample (N/2, N/2)'s object + 1, 0 for background
+};
+GridPixel shade_grid(const World& world, int x, int y, const Hit* hits);
+
+// Replaces, in `result`, each pixel with its N×N grid's mean (n = world.settings().samples;
+// every pixel, or only where `only` is 1), by grid_hits and shade_grid. Ray counts add to
+// result.rays; the pixel's cut-off weight becomes its samples' mean. The primary-hit and shading
+// parts of each tile are timed apart and the pass's wall time shared between times.primary and
+// times.shading in their ratio.
+void supersample(const World& world, const PrimarySource& source,
+                 const std::vector<std::uint8_t>* only, RenderResult& result, PrimaryStats& stats,
+                 const TileProgress& progress, PhaseTimes& times);
+
+} // namespace GLINT_PRECISION
+} // namespace glint
