@@ -21,9 +21,18 @@ Frame render_frame(const World& world, const FrameSettings& settings,
             items.upload(world, settings.raster, settings.tessellation);
             return 0;
         });
-        frame.items = timed(frame.times.raster, [&] { return items.draw(world); });
+        // Pixel centres where a pass takes them (N = 1, adaptive's first pass), and the N×N
+        // sample grid where one is traced (antialiasing, trace/sampling.h).
+        const RenderSettings& render = world.settings();
+        if (render.samples == 1 || render.antialias == Antialias::adaptive)
+            frame.items = timed(frame.times.raster, [&] { return items.draw(world); });
+        if (render.samples > 1)
+            frame.sample_items =
+                timed(frame.times.raster, [&] { return items.draw(world, false, render.samples); });
         frame.deviations = items.deviations();
-        source = {&frame.items->ids, settings.resolve};
+        source.resolve = settings.resolve;
+        if (frame.items) source.ids = &frame.items->ids;
+        if (frame.sample_items) source.sample_ids = &frame.sample_items->ids;
     }
     frame.result = trace_frame(world, source, frame.primary_stats, progress, frame.times);
     return frame;

@@ -32,10 +32,11 @@ struct FrameSettings {
 struct Frame {
     RenderResult result; // image, rays, cut-off weights, primary ids
     PhaseTimes times;
-    PrimaryStats primary_stats;            // hybrid only
-    std::optional<ItemBufferResult> items; // hybrid only
-    std::vector<float> deviations;         // hybrid only: per object, world units
-    std::string gl_renderer;               // hybrid only
+    PrimaryStats primary_stats;                   // hybrid only
+    std::optional<ItemBufferResult> items;        // hybrid only: pixel centres (N = 1 or adaptive)
+    std::optional<ItemBufferResult> sample_items; // hybrid with N > 1: the N×N sample grid
+    std::vector<float> deviations;                // hybrid only: per object, world units
+    std::string gl_renderer;                      // hybrid only
 };
 
 // From a prepared World (float precision; times.prepare stays 0). Throws GlError when hybrid

@@ -135,6 +135,7 @@ struct ItemBuffer::Impl {
     GLuint framebuffer = 0, colour = 0, depth = 0, pack_buffer = 0;
     GLuint flat_colour = 0; // RGBA8, attachment 1, made on the first flat-preview draw
     int width = 0, height = 0;
+    int sample_grid = 1; // the draw's N: the target is N× the camera's image on each side
     std::vector<Geometry> geometries;
     std::vector<DrawItem> items;
     // Per geometry, the objects drawn with it (a mesh, or the tessellation of one shape): one
@@ -461,8 +462,8 @@ void ItemBuffer::Impl::draw_single(const World& world, const DrawItem& item, con
         const Vec3 right = camera.right_scaled(), up = camera.up_scaled();
         glUniform3fv(uniform("right_scaled"), 1, glm::value_ptr(right));
         glUniform3fv(uniform("up_scaled"), 1, glm::value_ptr(up));
-        glUniform2f(uniform("viewport"), static_cast<float>(camera.width()),
-                    static_cast<float>(camera.height()));
+        glUniform2f(uniform("viewport"), static_cast<float>(camera.width() * gl.sample_grid),
+                    static_cast<float>(camera.height() * gl.sample_grid));
         glUniform1f(uniform("near"), near);
     }
     if (item.full_screen) {
@@ -513,13 +514,26 @@ void ItemBuffer::Impl::draw_instanced(const World& world, const glm::dmat4& clip
     }
 }
 
-ItemBufferResult ItemBuffer::draw(const World& world, bool flat_preview) {
+ItemBufferResult ItemBuffer::draw(const World& world, bool flat_preview, int samples) {
     Impl& gl = *impl_;
     const PinholeCamera& camera = world.camera();
     const float near = near_plane(world);
+    // The projection maps the view to NDC whatever the target's size: drawn at N× the size, GL
+    // pixel (N·i + a, N·j + b)'s centre is sample (a, b) of pixel (i, j) (DESIGN §11).
     const glm::dmat4 clip = projection(camera, near);
     const Vec3 background = world.background();
-    gl.begin(camera.width(), camera.height(), flat_preview ? &background : nullptr);
+    const int width = camera.width() * samples, height = camera.height() * samples;
+    GLint limits[3] = {0, 0, 0}, viewport[2] = {0, 0};
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &limits[0]);
+    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &limits[1]);
+    glGetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
+    limits[2] = std::min(viewport[0], viewport[1]);
+    const int limit = *std::min_element(limits, limits + 3);
+    if (std::max(width, height) > limit)
+        throw GlError("an item buffer of " + std::to_string(width) + "x" + std::to_string(height) +
+                      " exceeds this GL's largest target side, " + std::to_string(limit));
+    gl.sample_grid = samples;
+    gl.begin(width, height, flat_preview ? &background : nullptr);
     for (const Impl::DrawItem& item : gl.items)
         gl.draw_single(world, item, clip, near, flat_preview);
     if (!gl.instances_of.empty()) gl.draw_instanced(world, clip, flat_preview);

@@ -42,7 +42,10 @@ class ItemBuffer {
 
     // Draws the uploaded objects from the world's camera and reads back ids and depth, and with
     // `flat_preview` also a flat-shaded colour image in the same pass (glint preview's first look).
-    ItemBufferResult draw(const World& world, bool flat_preview = false);
+    // With `samples` = N > 1, at N× the camera's width and height: the ids of every pixel's N×N
+    // sample grid (trace/primary_hits.h, PrimarySource::sample_ids). Throws GlError where that
+    // exceeds GL's largest target (16384 on llvmpipe).
+    ItemBufferResult draw(const World& world, bool flat_preview = false, int samples = 1);
 
     // Per object, in world units: how far what was drawn may lie from the true surface.
     const std::vector<float>& deviations() const { return deviations_; }

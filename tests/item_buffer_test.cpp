@@ -134,6 +134,91 @@ TEST_P(GlTest, ExactResolveReproducesRayModeOnACrowdedScene) {
     }
 }
 
+// Antialiasing (trace/sampling.h): the item buffer drawn at N× resolution names every sample's
+// object, and exact resolve makes each sample ray mode's, so hybrid and ray mode render the
+// same N×N images, uniform and adaptive, where the adaptive rule sees the same ids (here the
+// item buffer's sample ids only add refined pixels: the image may differ only on those).
+TEST_P(GlTest, HybridEqualsRayModeWithSamplesUniformAndAdaptive) {
+    for (const char* name : {"default", "glass", "transforms"}) {
+        for (const int n : {2, 3}) {
+            Scene scene = testing::shipped(name, 96, 72);
+            scene.render.samples = n;
+            for (const Antialias aa : {Antialias::uniform, Antialias::adaptive}) {
+                scene.render.antialias = aa;
+                const World world(scene);
+                for (const RasterMode raster : {RasterMode::mesh, RasterMode::proxy}) {
+                    FrameSettings settings{Mode::ray,      GetParam(), raster, kDefaultTessellation,
+                                           Resolve::exact, 0};
+                    const Frame ray = render_frame(world, settings);
+                    settings.mode = Mode::hybrid;
+                    const Frame hybrid = render_frame(world, settings);
+                    const std::string label = std::string(name) + " " + std::to_string(n) + " " +
+                                              std::string(name_of(aa)) + " " +
+                                              std::string(name_of(raster));
+                    ASSERT_TRUE(hybrid.sample_items) << label;
+                    EXPECT_EQ(hybrid.sample_items->ids.width, 96 * n) << label;
+                    EXPECT_EQ(hybrid.items.has_value(), aa == Antialias::adaptive) << label;
+                    if (aa == Antialias::uniform) {
+                        EXPECT_EQ(ray.result.image.rgb, hybrid.result.image.rgb) << label;
+                        EXPECT_EQ(ray.result.rays.total(), hybrid.result.rays.total()) << label;
+                        continue;
+                    }
+                    for (std::size_t i = 0; i < ray.result.refined.size(); ++i) {
+                        ASSERT_LE(ray.result.refined[i], hybrid.result.refined[i]) << label;
+                        if (ray.result.refined[i] == hybrid.result.refined[i]) {
+                            ASSERT_TRUE(std::equal(&ray.result.image.rgb[3 * i],
+                                                   &ray.result.image.rgb[3 * i + 3],
+                                                   &hybrid.result.image.rgb[3 * i]))
+                                << label << " pixel " << i;
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+// A box 0.3 pixels wide standing on the boundary between two pixel columns: every pixel centre
+// misses it, so ray mode's one-sample pass sees background only and refines nothing, while the
+// 4×4 item buffer names it in the samples at ±0.125 pixels from the boundary. Adaptive hybrid
+// refines exactly those two columns (where the box spans) and renders them as uniform 4×4 does.
+TEST_P(GlTest, AdaptiveHybridFindsAnObjectThatFallsBetweenPixelCentres) {
+    // 16×16 pixels, one world unit each at z = 0: tan(fov_y/2) = 8/10.
+    Scene scene = parse_scene(R"({
+        "camera": {"eye": [0, 0, 10], "look_at": [0, 0, 0], "fov_y": 77.31961650818018,
+                   "width": 16, "height": 16},
+        "lights": [{"position": [3, 4, 12]}], "background": [0.05, 0.05, 0.1],
+        "materials": {"white": {"diffuse": [0.9, 0.9, 0.9]}},
+        "render": {"samples": 4, "antialias": "adaptive"},
+        "objects": [{"shape": "box", "material": "white",
+                     "transform": [{"scale": [0.15, 6, 0.15]}]}]})",
+                              "thin.json");
+    const World world(scene);
+    for (const RasterMode raster : {RasterMode::mesh, RasterMode::proxy}) {
+        FrameSettings settings{Mode::ray,      GetParam(), raster, kDefaultTessellation,
+                               Resolve::exact, 0};
+        const Frame ray = render_frame(world, settings);
+        EXPECT_EQ(std::count(ray.result.refined.begin(), ray.result.refined.end(), 1), 0);
+        EXPECT_EQ(ray.result.ids, std::vector<std::uint32_t>(16 * 16, 0)) << "a centre saw it";
+        settings.mode = Mode::hybrid;
+        const Frame hybrid = render_frame(world, settings);
+        scene.render.antialias = Antialias::uniform;
+        const Frame uniform = render_frame(World(scene), settings);
+        scene.render.antialias = Antialias::adaptive;
+        for (int y = 0; y < 16; ++y) {
+            for (int x = 0; x < 16; ++x) {
+                const bool spans = (x == 7 || x == 8) && y >= 2 && y <= 13;
+                EXPECT_EQ(hybrid.result.refined[y * 16 + x], spans ? 1 : 0) << x << ", " << y;
+                const std::uint8_t* p = hybrid.result.image.pixel(x, y);
+                EXPECT_TRUE(std::equal(p, p + 3, uniform.result.image.pixel(x, y)));
+                if (spans) {
+                    EXPECT_GT(p[0], 40) << "the box is lit: " << x << ", " << y;
+                }
+            }
+        }
+    }
+}
+
 INSTANTIATE_TEST_SUITE_P(Backends, GlTest, ::testing::Values(GlBackend::osmesa, GlBackend::egl),
                          backend_test_name);
 
