@@ -34,7 +34,7 @@ Scene prepare(const CompareArgs& args) {
     if (!args.prefix.empty()) check_output(args.prefix + "-ray.png", "-o");
     if (!args.json.empty()) check_output(args.json, "--json");
     Scene scene = args.scene.load();
-    check_frame_memory(scene.camera, Mode::hybrid, 2); // both frames are kept to compare them
+    check_frame_memory(scene, Mode::hybrid, 2); // both frames are kept to compare them
     return scene;
 }
 

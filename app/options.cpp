@@ -30,6 +30,19 @@ void SceneOptions::add_to(CLI::App& cmd) {
         cmd.add_option("--min-reflectivity", min_reflectivity,
                        "Smallest path weight for which a reflection ray is still cast")
             ->check(CLI::Range(0.0, 1.0));
+    samples_option = cmd.add_option("--samples", samples,
+                                    "Antialiasing: an NxN grid of samples in every pixel "
+                                    "(1 to 16), overriding the scene's render.samples")
+                         ->check(CLI::Range(1, kMaxSamples));
+    cmd.add_option("--aa", antialias,
+                   "uniform: every pixel's grid; adaptive: the grid only where the adaptive rule "
+                   "finds an edge (docs/ANTIALIASING.md); default the scene's")
+        ->check(CLI::IsMember(all_names<Antialias>()));
+    aa_threshold_option =
+        cmd.add_option("--aa-threshold", aa_threshold,
+                       "Adaptive: the largest colour difference (0 to 1, per channel) between "
+                       "neighbours' first samples that leaves a pixel unrefined")
+            ->check(CLI::Range(0.0, 1.0));
 }
 
 fs::path SceneOptions::scene_path() const {
@@ -46,6 +59,9 @@ Scene SceneOptions::load() const {
     if (max_depth_option->count()) loaded.render.max_depth = max_depth;
     if (min_reflectivity_option->count())
         loaded.render.min_reflectivity = static_cast<float>(min_reflectivity);
+    if (samples_option->count()) loaded.render.samples = samples;
+    if (!antialias.empty()) loaded.render.antialias = *from_name<Antialias>(antialias);
+    if (aa_threshold_option->count()) loaded.render.aa_threshold = aa_threshold;
     return loaded;
 }
 
@@ -169,15 +185,45 @@ std::string gib(std::uint64_t bytes) {
 
 } // namespace
 
-void check_frame_memory(const Camera& camera, Mode mode, int frames) {
-    const std::uint64_t needed = frames * frame_memory_bytes(camera.width, camera.height, mode);
+void check_frame_memory(const Scene& scene, Mode mode, int frames) {
+    const Camera& camera = scene.camera;
+    const int n = scene.render.samples;
+    const bool sample_grid = mode == Mode::hybrid && n > 1;
+    const std::string size = std::to_string(camera.width) + "x" + std::to_string(camera.height);
+    const std::string grid = std::to_string(n) + "x" + std::to_string(n) + " samples";
+    if (sample_grid && std::max(camera.width, camera.height) * n > kMaxItemBufferSide)
+        throw UsageError("a " + size + " image with " + grid + " needs an item buffer of " +
+                         std::to_string(camera.width * n) + "x" +
+                         std::to_string(camera.height * n) + ", beyond the largest GL draws (" +
+                         std::to_string(kMaxItemBufferSide) +
+                         " a side): use fewer samples, a smaller --size, or --mode ray");
+    std::uint64_t needed = frames * frame_memory_bytes(camera.width, camera.height, mode);
+    // The sample grid's item buffer: its ids and depths read back (8 B a sample), llvmpipe's id
+    // and depth attachments (8 B) and the pixel-pack buffer and depth read-back (8 B).
+    if (sample_grid)
+        needed += std::uint64_t(frames) * camera.width * camera.height * std::uint64_t(n * n) * 24;
     const std::optional<std::uint64_t> available = available_memory_bytes();
     if (available && needed > *available)
-        throw UsageError("a " + std::to_string(camera.width) + "x" + std::to_string(camera.height) +
-                         " image needs about " + gib(needed) +
+        throw UsageError("a " + size + " image" + (sample_grid ? " with " + grid : "") +
+                         " needs about " + gib(needed) +
                          (mode == Mode::hybrid ? " in hybrid mode" : "") + ", but only " +
                          gib(*available) + " of memory is available: render it smaller (--size)" +
+                         (sample_grid ? ", with fewer samples" : "") +
                          (mode == Mode::hybrid ? " or with --mode ray" : ""));
+}
+
+std::string describe_antialiasing(const RenderSettings& render) {
+    if (render.samples == 1) return "";
+    char text[96];
+    std::snprintf(text, sizeof text, "%dx%d samples, %s", render.samples, render.samples,
+                  std::string(name_of(render.antialias)).c_str());
+    std::string line = text;
+    if (render.antialias == Antialias::adaptive) {
+        std::snprintf(text, sizeof text, " (threshold %g)",
+                      static_cast<double>(render.aa_threshold));
+        line += text;
+    }
+    return line;
 }
 
 int guarded(const std::function<int()>& body) {

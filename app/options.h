@@ -27,6 +27,11 @@ struct SceneOptions {
     double min_reflectivity = 0;
     CLI::Option* max_depth_option = nullptr;
     CLI::Option* min_reflectivity_option = nullptr;
+    int samples = 1;
+    std::string antialias;
+    float aa_threshold = kDefaultAaThreshold;
+    CLI::Option* samples_option = nullptr;
+    CLI::Option* aa_threshold_option = nullptr;
 
     void add_to(CLI::App& cmd);
     std::filesystem::path scene_path() const; // the given scene, or scenes/default.json
@@ -63,9 +68,17 @@ void check_output(const std::filesystem::path& path, const std::string& flag);
 void create_output_directory(const std::filesystem::path& output);
 
 // Refuses, before anything is allocated, a frame that would not fit in the memory this process
-// may use (MemAvailable, or a lower address-space limit): UsageError naming the size.
-// `frames`: how many frames of this size are alive at once.
-void check_frame_memory(const Camera& camera, Mode mode, int frames);
+// may use (MemAvailable, or a lower address-space limit): UsageError naming the size. Counts
+// the scene's antialiasing: in hybrid mode, an N×N grid's item buffer holds N² samples a pixel
+// (and cannot exceed kMaxItemBufferSide a side). `frames`: how many frames of this size are
+// alive at once.
+void check_frame_memory(const Scene& scene, Mode mode, int frames);
+
+// The largest side of an item buffer glint draws (llvmpipe's limit, and most GPUs').
+inline constexpr int kMaxItemBufferSide = 16384;
+
+// One line for people: "4x4 samples, adaptive (threshold 0.02)"; empty for one sample.
+std::string describe_antialiasing(const RenderSettings& render);
 
 // Loads a scene (JSON or NFF) and prints what the loader left out or changed ("glint: note: …"
 // on stderr), as every command that renders a scene does.

@@ -36,7 +36,7 @@ PreviewOptions prepare(const PreviewArgs& args) {
     options.frame = args.frame.settings();
     options.view = *from_name<View>(args.view); // checked by --view
     // The preview holds the item buffer, its flat image and four traced views of each frame.
-    check_frame_memory(options.scene.camera, Mode::hybrid, 2);
+    check_frame_memory(options.scene, Mode::hybrid, 2);
     return options;
 }
 

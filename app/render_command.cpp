@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 
@@ -42,7 +43,7 @@ RenderJob prepare(const RenderArgs& args) {
     check_output(job.output, "-o");
     if (!args.stats.empty()) check_output(args.stats, "--stats");
     job.scene = args.scene.load();
-    check_frame_memory(job.scene.camera, args.frame.settings().mode, 1);
+    check_frame_memory(job.scene, args.frame.settings().mode, 1);
     return job;
 }
 
@@ -71,6 +72,9 @@ nlohmann::ordered_json stats_json(const RenderReport& r) {
         {"threads", r.threads},
         {"max_depth", scene.render.max_depth},
         {"min_reflectivity", scene.render.min_reflectivity},
+        {"samples", scene.render.samples},
+        {"antialias", name_of(scene.render.antialias)},
+        {"aa_threshold", scene.render.aa_threshold},
         {"seconds", {{"load", r.load_seconds}, {"prepare", r.prepare_seconds}}},
         {"rays",
          {{"primary", rays.primary},
@@ -99,6 +103,9 @@ nlohmann::ordered_json stats_json(const RenderReport& r) {
         {"nodes", accel.node_count()},
         {"nodes_visited_per_ray", static_cast<double>(counts.nodes) / queries},
         {"primitives_tested_per_ray", static_cast<double>(counts.primitives) / queries}};
+    if (!r.frame.result.refined.empty())
+        stats["refined_pixels"] = std::count(r.frame.result.refined.begin(),
+                                             r.frame.result.refined.end(), std::uint8_t{1});
     if (r.args.frame.settings().mode == Mode::hybrid) {
         const PrimaryStats& p = r.frame.primary_stats;
         const std::vector<float>& deviations = r.frame.deviations;
@@ -127,6 +134,17 @@ void print_report(const RenderReport& r) {
                 r.args.frame.describe().c_str(),
                 std::string(name_of(r.world.accelerator().kind())).c_str(), r.threads,
                 r.total_seconds, r.frame.times.total());
+    if (const std::string aa = describe_antialiasing(scene.render); !aa.empty()) {
+        std::printf("antialiasing: %s", aa.c_str());
+        const std::vector<std::uint8_t>& refined = r.frame.result.refined;
+        if (!refined.empty()) {
+            const auto count = std::count(refined.begin(), refined.end(), std::uint8_t{1});
+            std::printf(": %lld of %zu pixels took the grid (%.1f%%)",
+                        static_cast<long long>(count), refined.size(),
+                        100.0 * static_cast<double>(count) / static_cast<double>(refined.size()));
+        }
+        std::printf("\n");
+    }
     std::printf("rays: %llu primary, %llu shadow, %llu reflection",
                 static_cast<unsigned long long>(rays.primary),
                 static_cast<unsigned long long>(rays.shadow),
@@ -161,9 +179,10 @@ int run_render(const RenderArgs& args) {
     std::atomic<int> tiles_done{0};
     Frame frame;
     {
-        // Primary hits and shading each visit every tile once.
+        // Primary hits and shading each visit every tile once (adaptive antialiasing: twice).
         const Progress progress(
-            "rendering", 2 * tile_count(scene.camera.width, scene.camera.height), tiles_done);
+            "rendering", progress_steps(scene.render, scene.camera.width, scene.camera.height),
+            tiles_done);
         frame = render_frame(world, args.frame.settings(), &tiles_done);
     }
     phase.restart();

@@ -422,7 +422,7 @@ std::vector<SceneResult> prepare(const TradeoffArgs& args) {
             std::tie(sr.scene.camera.width, sr.scene.camera.height) =
                 parse_size(args.size, "--size");
         // The exact image, its float twin and the run being measured are alive together.
-        check_frame_memory(sr.scene.camera, Mode::hybrid, 3);
+        check_frame_memory(sr.scene, Mode::hybrid, 3);
         results.push_back(std::move(sr));
     }
     return results;

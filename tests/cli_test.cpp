@@ -235,6 +235,14 @@ INSTANTIATE_TEST_SUITE_P(EveryClass, BadRunTest, ::testing::Values(
     BadRun{"tradeoff: bad scene", R"({"objects": 1})", "tradeoff scene.json", "scene.json: /objects: expected an array"},
     BadRun{"tradeoff: bad size", "", "tradeoff --size 0x5", "--size 0x5: each side must be 1 to 16384"},
     BadRun{"tradeoff: no repeat", "", "tradeoff --repeat 0", "--repeat"},
+    BadRun{"no samples", "", "render --samples 0", "--samples"},
+    BadRun{"samples beyond 16", "", "compare --samples 17", "--samples"},
+    BadRun{"unknown antialiasing", "", "render --aa jitter", "--aa"},
+    BadRun{"threshold out of range", "", "render --aa-threshold 1.5", "--aa-threshold"},
+    BadRun{"scene: samples beyond 16", R"({"render": {"samples": 17}})", "render scene.json", "scene.json: /render/samples: must be between 1 and 16"},
+    BadRun{"scene: unknown antialiasing", R"({"render": {"antialias": "jitter"}})", "render scene.json", "scene.json: /render/antialias: expected uniform or adaptive"},
+    BadRun{"scene: threshold out of range", R"({"render": {"aa_threshold": -0.1}})", "render scene.json", "scene.json: /render/aa_threshold: must be between 0 and 1"},
+    BadRun{"sample grid beyond GL", "", "render --size 3840x2160 --samples 16", "a 3840x2160 image with 16x16 samples needs an item buffer of 61440x34560, beyond the largest GL draws (16384 a side): use fewer samples, a smaller --size, or --mode ray"},
     BadRun{"stats into a missing directory", "", "render --stats no/dir/s.json", "--stats no/dir/s.json: directory no/dir does not exist"}
 ), [](const auto& info) { return testing::test_name(info.param.what); });
 // clang-format on
@@ -286,6 +294,24 @@ TEST(Cli, AnImageLargerThanMemoryIsRefusedBeforeAllocating) {
             << r.err;
         EXPECT_FALSE(fs::exists(dir / "a.png"));
     }
+#endif
+}
+
+// The sample grid's item buffer counts too: 1920×1080 with 8×8 samples needs ~3.3 GiB in hybrid
+// mode (24 B a sample), refused under a 2 GiB limit before any work, where ray mode, which
+// keeps no sample store, fits.
+TEST(Cli, ASampleGridLargerThanMemoryIsRefusedBeforeAllocating) {
+#ifdef GLINT_SANITIZE
+    GTEST_SKIP() << "AddressSanitizer reserves terabytes of address space: no ulimit -v under it";
+#else
+    const fs::path dir = fresh_dir();
+    const Outcome r =
+        glint(dir, "render --size 1920x1080 --samples 8 -o a.png", "ulimit -v 2097152 &&");
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("a 1920x1080 image with 8x8 samples needs about 3."), std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("with fewer samples or with --mode ray"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "a.png"));
 #endif
 }
 
