@@ -35,8 +35,11 @@ PreviewOptions prepare(const PreviewArgs& args) {
     options.accel = args.scene.accel_kind();
     options.frame = args.frame.settings();
     options.view = *from_name<View>(args.view); // checked by --view
-    // The preview holds the item buffer, its flat image and four traced views of each frame.
-    check_frame_memory(options.scene, Mode::hybrid, 2);
+    // The preview holds the item buffer, its flat image and four traced views of each frame
+    // (and its sample grids, refined tile by tile, need no item buffer of their own).
+    Scene one_sample = options.scene;
+    one_sample.render.samples = 1;
+    check_frame_memory(one_sample, Mode::hybrid, 2);
     return options;
 }
 

@@ -161,7 +161,12 @@ std::string Preview::describe_settings() const {
             text += " tess " + std::to_string(frame_.tessellation);
         text.append(" ").append(name_of(frame_.resolve));
     }
-    return text + ", depth " + std::to_string(scene_.render.max_depth);
+    const RenderSettings& render = scene_.render;
+    text += ", depth " + std::to_string(render.max_depth);
+    if (render.samples > 1)
+        text += ", " + std::to_string(render.samples) + "x" + std::to_string(render.samples) + " " +
+                std::string(name_of(render.antialias));
+    return text;
 }
 
 void Preview::on_key(int key) {
@@ -304,29 +309,35 @@ void Preview::show_base() {
         glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE,
                         base->rgb.data());
     }
-    uploaded_.assign(static_cast<std::size_t>(job_->tile_count()), is_traced(view_) ? 0 : 1);
+    // Per tile, how many of the job's passes the texture shows (all, for an untraced view).
+    uploaded_.assign(static_cast<std::size_t>(job_->tile_count()),
+                     is_traced(view_) ? 0 : job_->passes());
 }
 
 bool Preview::upload_tiles() {
     if (!job_) return true;
     if (!is_traced(view_)) return true;
-    const Image& image = job_->traced(view_);
     glBindTexture(GL_TEXTURE_2D, texture_);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glPixelStorei(GL_UNPACK_ROW_LENGTH, image.width);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, job_->width());
     bool all = true;
     for (int t = 0; t < job_->tile_count(); ++t) {
-        if (uploaded_[static_cast<std::size_t>(t)]) continue;
-        if (!job_->tile_done(t)) {
+        // Only the final image changes in the second pass (the sample grids).
+        const int wanted = view_ == View::final ? job_->passes() : 1;
+        const int passes = std::min(job_->tile_passes(t), wanted);
+        if (uploaded_[static_cast<std::size_t>(t)] >= wanted) continue;
+        if (passes <= uploaded_[static_cast<std::size_t>(t)]) {
             all = false;
             continue;
         }
         const TileRect r = job_->tile(t);
+        const Image& image = job_->traced(view_, passes);
         glPixelStorei(GL_UNPACK_SKIP_PIXELS, r.x0);
         glPixelStorei(GL_UNPACK_SKIP_ROWS, r.y0);
         glTexSubImage2D(GL_TEXTURE_2D, 0, r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0, GL_RGB,
                         GL_UNSIGNED_BYTE, image.rgb.data());
-        uploaded_[static_cast<std::size_t>(t)] = 1;
+        uploaded_[static_cast<std::size_t>(t)] = passes;
+        all &= passes == wanted;
     }
     glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
     glPixelStorei(GL_UNPACK_SKIP_PIXELS, 0);
@@ -383,8 +394,9 @@ void Preview::update_title(bool force) {
                           job_->width(), job_->height(), job_->seconds(),
                           static_cast<double>(rays.total()) / 1e6);
         else
-            std::snprintf(progress, sizeof progress, "%dx%d tracing %d%%", job_->width(),
-                          job_->height(), 100 * job_->tiles_done() / job_->tile_count());
+            std::snprintf(progress, sizeof progress, "%dx%d %s %d%%", job_->width(), job_->height(),
+                          job_->tiles_done() < job_->tile_count() ? "tracing" : "refining",
+                          100 * job_->tiles_done() / (job_->passes() * job_->tile_count()));
         title += progress;
         if (view_ == View::difference)
             title += ", " + std::to_string(job_->differing_pixels()) + " pixels differ";

@@ -1,6 +1,9 @@
 #include "preview/refiner.h"
 
+#include "trace/sampling.h"
+
 #include <algorithm>
+#include <chrono>
 #include <numeric>
 
 namespace glint {
@@ -22,10 +25,16 @@ RefineJob::RefineJob(std::shared_ptr<const World> world, std::shared_ptr<const I
     };
     std::stable_sort(order_.begin(), order_.end(),
                      [&](int a, int b) { return distance(a) < distance(b); });
-    done_ = std::make_unique<std::atomic<bool>[]>(order_.size());
+    done_ = std::make_unique<std::atomic<int>[]>(order_.size());
+    const RenderSettings& settings = world_->settings();
+    if (settings.samples > 1) {
+        passes_ = 2;
+        if (settings.antialias == Antialias::adaptive)
+            path_keys_.assign(static_cast<std::size_t>(width) * height, 0);
+    }
 }
 
-const Image& RefineJob::traced(View view) const {
+const Image& RefineJob::traced(View view, int passes) const {
     switch (view) {
     case View::normals:
         return normals_;
@@ -34,7 +43,7 @@ const Image& RefineJob::traced(View view) const {
     case View::reflections:
         return reflections_;
     default:
-        return final_;
+        return passes > 1 && passes_ > 1 ? sampled_ : final_;
     }
 }
 
@@ -44,15 +53,73 @@ TileRect RefineJob::tile(int index) const {
 }
 
 void RefineJob::work(const std::atomic<bool>& cancel) {
-    for (int k = next_++; k < tile_count() && !cancel.load(std::memory_order_relaxed);
+    const int tiles = tile_count();
+    for (int k = next_++; k < passes_ * tiles && !cancel.load(std::memory_order_relaxed);
          k = next_++) {
-        trace_tile(tile(order_[static_cast<std::size_t>(k)]));
-        done_[order_[static_cast<std::size_t>(k)]].store(true, std::memory_order_release);
-        if (tiles_done_.fetch_add(1, std::memory_order_acq_rel) + 1 == tile_count()) {
+        const int index = order_[static_cast<std::size_t>(k % tiles)];
+        if (k < tiles) {
+            trace_tile(tile(index));
+        } else {
+            if (!wait_for_first_pass(cancel)) return;
+            refine_tile(tile(index));
+        }
+        done_[index].fetch_add(1, std::memory_order_acq_rel);
+        const int done = tiles_done_.fetch_add(1, std::memory_order_acq_rel) + 1;
+        if (done == tiles && passes_ > 1) plan_refinement();
+        if (done == passes_ * tiles) {
             const std::lock_guard lock(totals_mutex_);
             seconds_ = watch_.seconds();
         }
     }
+}
+
+void RefineJob::plan_refinement() {
+    const RenderSettings& settings = world_->settings();
+    if (settings.antialias == Antialias::adaptive)
+        refine_ = adaptive_refinement(final_, path_keys_, nullptr, settings.samples,
+                                      settings.aa_threshold);
+    else
+        refine_.assign(static_cast<std::size_t>(width()) * height(), 1);
+    sampled_ = final_;
+    {
+        const std::lock_guard lock(totals_mutex_);
+        refined_ = static_cast<std::uint64_t>(std::count(refine_.begin(), refine_.end(), 1));
+    }
+    planned_.store(true, std::memory_order_release);
+}
+
+bool RefineJob::wait_for_first_pass(const std::atomic<bool>& cancel) {
+    while (!planned_.load(std::memory_order_acquire)) {
+        if (cancel.load(std::memory_order_relaxed)) return false;
+        std::this_thread::sleep_for(std::chrono::milliseconds(1)); // at most one tile's wait
+    }
+    return true;
+}
+
+// The second pass: the planned pixels' N×N grids, by camera ray (exact resolve would give the
+// same hits; the preview keeps one item buffer, of the pixel centres).
+void RefineJob::refine_tile(const TileRect& rect) {
+    const World& world = *world_;
+    const int n = world.settings().samples;
+    std::vector<Hit> hits(static_cast<std::size_t>(n) * n);
+    RayCounts counts;
+    PrimaryStats unused;
+    for (int y = rect.y0; y < rect.y1; ++y) {
+        for (int x = rect.x0; x < rect.x1; ++x) {
+            if (!refine_[static_cast<std::size_t>(y) * width() + x]) continue;
+            grid_hits(world, {}, x, y, hits.data(), unused);
+            const GridPixel pixel = shade_grid(world, x, y, hits.data());
+            store_colour(pixel.mean, sampled_.pixel(x, y));
+            counts += pixel.rays;
+        }
+    }
+    const std::lock_guard lock(totals_mutex_);
+    rays_ += counts;
+}
+
+std::uint64_t RefineJob::refined_pixels() const {
+    const std::lock_guard lock(totals_mutex_);
+    return refined_;
 }
 
 // Each pixel through trace/pixel.h's path, as `glint render` traces it; the other views show
@@ -81,6 +148,8 @@ void RefineJob::trace_tile(const TileRect& rect) {
             const Rgb diff = difference_colour(p, differs);
             std::copy(diff.begin(), diff.end(), difference_.pixel(x, y));
             counts += sample.rays;
+            if (!path_keys_.empty())
+                path_keys_[static_cast<std::size_t>(y) * width() + x] = sample.path_key;
         }
     }
     const std::lock_guard lock(totals_mutex_);

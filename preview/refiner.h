@@ -2,6 +2,9 @@
 // from the image centre outwards by worker threads, while the UI thread shows each tile as it
 // finishes. A job is cancelled (between tiles) as soon as the camera moves. Each traced pixel is
 // computed exactly as `glint render` computes it, so a finished job is the headless image.
+// With the scene's samples N > 1, a second pass follows the first (one sample a pixel, from the
+// same item buffer): every pixel's N×N grid, or with adaptive antialiasing the pixels the rule
+// refines from the first pass (trace/sampling.h), the samples' primary hits cast as rays.
 #pragma once
 
 #include "preview/views.h"
@@ -33,13 +36,21 @@ class RefineJob {
     int width() const { return final_.width; }
     int height() const { return final_.height; }
 
-    // The traced image of a view (is_traced(view)); read a tile's pixels only once it is done.
-    const Image& traced(View view) const;
-    int tile_count() const { return static_cast<int>(order_.size()); }
-    TileRect tile(int index) const; // in row-major tile order
-    bool tile_done(int index) const { return done_[index].load(std::memory_order_acquire); }
-    int tiles_done() const { return tiles_done_.load(std::memory_order_acquire); }
-    bool finished() const { return tiles_done() == tile_count(); }
+    // The traced image of a view (is_traced(view)) as `passes` passes leave it (default: all);
+    // read a tile's pixels only once tile_passes says that many are done. Only the final view
+    // changes in the second pass, which writes a copy of the first's image, so a tile shown
+    // after the first pass is never written again.
+    const Image& traced(View view, int passes = 2) const;
+    int tile_count() const { return static_cast<int>(order_.size()); } // per pass
+    TileRect tile(int index) const;                                    // in row-major tile order
+    int passes() const { return passes_; }
+    // How many passes have finished tile `index` (0 … passes()).
+    int tile_passes(int index) const { return done_[index].load(std::memory_order_acquire); }
+    bool tile_done(int index) const { return tile_passes(index) > 0; }
+    int tiles_done() const { return tiles_done_.load(std::memory_order_acquire); } // all passes
+    bool finished() const { return tiles_done() == passes_ * tile_count(); }
+    // Pixels the second pass refines (all with uniform antialiasing); 0 before it starts.
+    std::uint64_t refined_pixels() const;
 
     // Traces tiles until none is left or `cancel` is set; several threads may call it at once.
     void work(const std::atomic<bool>& cancel);
@@ -52,15 +63,26 @@ class RefineJob {
 
   private:
     void trace_tile(const TileRect& rect);
+    void refine_tile(const TileRect& rect);
+    // After the first pass's last tile: which pixels the second pass refines.
+    void plan_refinement();
+    // Until the first pass is done and planned; false if cancelled first.
+    bool wait_for_first_pass(const std::atomic<bool>& cancel);
 
     std::shared_ptr<const World> world_;
     std::shared_ptr<const IdImage> ids_;
     Resolve resolve_;
     bool compare_with_ray_;
     Image final_, normals_, difference_, reflections_;
+    Image sampled_; // the final view after the second pass
     int tiles_x_;
     std::vector<int> order_; // tile indices, nearest the image centre first
-    std::unique_ptr<std::atomic<bool>[]> done_;
+    int passes_ = 1;
+    std::unique_ptr<std::atomic<int>[]> done_;
+    std::vector<std::uint64_t> path_keys_; // first pass, for adaptive antialiasing
+    std::vector<std::uint8_t> refine_;     // the second pass's pixels
+    std::atomic<bool> planned_{false};
+    std::uint64_t refined_ = 0;
     std::atomic<int> next_{0}, tiles_done_{0};
     Stopwatch watch_; // from the job's making
     mutable std::mutex totals_mutex_;

@@ -44,6 +44,32 @@ void run_to_completion(const std::shared_ptr<RefineJob>& job, int threads) {
 
 class RefinerTest : public ::testing::TestWithParam<const char*> {};
 
+// With samples, the preview refines after its first pass: the first pass is N = 1's image, and
+// the finished job is the headless antialiased render (uniform and adaptive), from the same
+// pixel-centre item buffer.
+TEST_P(RefinerTest, TheSecondPassRefinesToTheScenesSamples) {
+    for (const Antialias aa : {Antialias::uniform, Antialias::adaptive}) {
+        Scene scene = shipped(GetParam(), 90, 70);
+        const RenderResult centres = render(World(scene));
+        scene.render.samples = 3, scene.render.antialias = aa;
+        const auto world = std::make_shared<const World>(scene);
+        const RenderResult sampled = render(*world);
+        auto job = std::make_shared<RefineJob>(world, ids_by_ray(*world), Resolve::exact);
+        EXPECT_EQ(job->passes(), 2);
+        run_to_completion(job, 2);
+        EXPECT_EQ(job->traced(View::final, 1).rgb, centres.image.rgb) << name_of(aa);
+        EXPECT_EQ(job->traced(View::final).rgb, sampled.image.rgb) << name_of(aa);
+        // Uniform: the preview's first pass comes on top of the grids, which render skips.
+        EXPECT_EQ(job->rays().total(),
+                  sampled.rays.total() + (aa == Antialias::uniform ? centres.rays.total() : 0))
+            << name_of(aa);
+        const auto refined = std::count(sampled.refined.begin(), sampled.refined.end(), 1);
+        EXPECT_EQ(job->refined_pixels(),
+                  aa == Antialias::uniform ? 90u * 70u : static_cast<std::uint64_t>(refined));
+        for (int t = 0; t < job->tile_count(); ++t) EXPECT_EQ(job->tile_passes(t), 2);
+    }
+}
+
 // Tile by tile, centre first, on any number of threads: the same bytes as shade_image over the
 // same primary hits (ray mode, and hybrid from an id image), and the same ray counts.
 TEST_P(RefinerTest, AFinishedJobIsTheHeadlessImage) {
