@@ -24,6 +24,7 @@ struct RenderArgs {
     FrameOptions frame;
     std::string output;
     std::string stats;
+    std::string aa_map;
 };
 
 // What a render needs once its input has been checked.
@@ -42,7 +43,17 @@ RenderJob prepare(const RenderArgs& args) {
     if (args.output.empty()) create_output_directory(job.output);
     check_output(job.output, "-o");
     if (!args.stats.empty()) check_output(args.stats, "--stats");
+    if (!args.aa_map.empty()) {
+        if (fs::path(args.aa_map).extension() != ".png")
+            throw UsageError("--aa-map " + args.aa_map + ": glint writes PNG files (.png)");
+        check_output(args.aa_map, "--aa-map");
+    }
     job.scene = args.scene.load();
+    if (!args.aa_map.empty() &&
+        (job.scene.render.samples == 1 || job.scene.render.antialias != Antialias::adaptive))
+        throw UsageError("--aa-map " + args.aa_map +
+                         ": maps adaptive antialiasing; give --aa adaptive and --samples N > 1 "
+                         "(or a scene with them)");
     check_frame_memory(job.scene, args.frame.settings().mode, 1);
     return job;
 }
@@ -166,6 +177,16 @@ void print_report(const RenderReport& r) {
                     r.cutoff.largest_omitted_weight);
 }
 
+// Where adaptive antialiasing took the grid: those pixels as rendered, the rest at a quarter of
+// their brightness.
+Image refinement_map(const RenderResult& result) {
+    Image map = result.image;
+    for (std::size_t i = 0; i < result.refined.size(); ++i)
+        if (!result.refined[i])
+            for (int c = 0; c < 3; ++c) map.rgb[3 * i + c] /= 4;
+    return map;
+}
+
 int run_render(const RenderArgs& args) {
     const Stopwatch total;
     Stopwatch phase;
@@ -195,6 +216,7 @@ int run_render(const RenderArgs& args) {
         args,    job,          world,           frame,         cutoff_bound(scene, frame.result),
         threads, load_seconds, prepare_seconds, write_seconds, total_seconds};
     if (!args.stats.empty()) write_file_atomically(args.stats, stats_json(report).dump(2) + "\n");
+    if (!args.aa_map.empty()) write_png(args.aa_map, refinement_map(frame.result));
     print_report(report);
     return 0;
 }
@@ -209,6 +231,9 @@ Command add_render_command(CLI::App& app) {
     args->frame.add_to(*cmd, true);
     cmd->add_option("--stats", args->stats,
                     "Also write timings per phase and ray counts as JSON here");
+    cmd->add_option("--aa-map", args->aa_map,
+                    "Adaptive antialiasing: also write a PNG of the pixels that took the grid "
+                    "(the others darkened)");
     return {cmd, [args] { prepare(*args); },
             [args] { return guarded([&] { return run_render(*args); }); }};
 }

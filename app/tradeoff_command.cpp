@@ -34,11 +34,21 @@ struct TradeoffArgs {
     std::string gl = "osmesa";
     int repeat = 3;
     int threads = 0;
+    int samples = 4; // the adaptive sweep's grid, and the uniform sweep's largest
 
     fs::path summary_path() const {
         return summary.empty() ? fs::path(output) / "summary.md" : fs::path(summary);
     }
 };
+
+std::string format_threshold(float threshold) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", static_cast<double>(threshold));
+    return text;
+}
+
+// The uniform grid the antialiasing knobs are measured against.
+constexpr int kGridReference = 8;
 
 // One point of the sweep: everything that may differ from the default setting. The frame's
 // gl and threads come from the command line.
@@ -48,6 +58,12 @@ struct Setting {
     float min_reflectivity = 0;
     std::optional<AccelKind> accel; // nothing: list below kListBelow objects, else bvh
     int divisor = 1;                // rendered at 1/divisor of the size, then enlarged
+    int samples = 1;                // antialiasing (trace/sampling.h)
+    Antialias antialias = Antialias::uniform;
+    float aa_threshold = kDefaultAaThreshold;
+    // The antialiasing knobs' error is measured against the uniform 8×8 image of the same
+    // setting, not the exact one-sample image: what sampling alone costs or gains.
+    bool against_grid = false;
 
     // A short name for tables and plots, e.g. "hybrid mesh tess 8 trust".
     std::string label(const Scene& scene) const {
@@ -67,6 +83,11 @@ struct Setting {
         }
         if (accel) s.append(" ").append(name_of(*accel));
         if (divisor > 1) s += " 1/" + std::to_string(divisor) + " size";
+        if (samples > 1 || against_grid) { // 1x1 against the grid: not the exact-image run
+            s += " " + std::to_string(samples) + "x" + std::to_string(samples);
+            if (antialias == Antialias::adaptive)
+                s += " adaptive " + format_threshold(aa_threshold);
+        }
         return s;
     }
 };
@@ -75,7 +96,7 @@ struct Setting {
 // tessellation 32, exact, the scene's depth and cut-off, automatic structure, full size).
 // The trace-only knobs (depth, cut-off, structure, size, precision) are swept in ray mode so
 // that nothing else changes the image. Keyed by label: a setting reached by two knobs runs once.
-std::vector<std::pair<std::string, Setting>> sweep(const Scene& scene) {
+std::vector<std::pair<std::string, Setting>> sweep(const Scene& scene, int samples) {
     Setting hybrid;
     hybrid.max_depth = scene.render.max_depth;
     hybrid.min_reflectivity = scene.render.min_reflectivity;
@@ -125,6 +146,20 @@ std::vector<std::pair<std::string, Setting>> sweep(const Scene& scene) {
     untruncated.max_depth = kMaxDepth;
     untruncated.min_reflectivity = 0;
     add("precision", untruncated);
+    // Antialiasing, in the default (hybrid) mode, against the uniform 8×8 image: uniform grids
+    // up to --samples, then adaptive at that grid over the threshold.
+    Setting grid = hybrid;
+    grid.against_grid = true;
+    for (int n = 1; n <= samples; ++n) {
+        grid.samples = n;
+        add("samples", grid);
+    }
+    grid.samples = samples;
+    grid.antialias = Antialias::adaptive;
+    for (const float threshold : {0.005f, 0.01f, 0.02f, 0.05f, 0.1f}) {
+        grid.aa_threshold = threshold;
+        add("aa_threshold", grid);
+    }
     return out;
 }
 
@@ -162,7 +197,7 @@ Image enlarge(const Image& small, int width, int height) {
 Run render_once(const Scene& scene, const Setting& s, const TradeoffArgs& args,
                 const std::shared_ptr<const SceneGeometry>& geometry) {
     Scene copy = scene;
-    copy.render = {s.max_depth, s.min_reflectivity};
+    copy.render = {s.max_depth, s.min_reflectivity, s.samples, s.antialias, s.aa_threshold};
     copy.camera.width = std::max(1, scene.camera.width / s.divisor);
     copy.camera.height = std::max(1, scene.camera.height / s.divisor);
     Run run;
@@ -198,6 +233,7 @@ std::string psnr_text(double psnr) {
 }
 
 // Indices of the runs on the Pareto front of (frame time, PSNR): none is both faster and closer.
+// Runs measured against different references (the exact image, the 8×8 grid) each have their own.
 std::vector<std::size_t> pareto_front(const std::vector<Run>& runs) {
     std::vector<std::size_t> order(runs.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
@@ -205,9 +241,12 @@ std::vector<std::size_t> pareto_front(const std::vector<Run>& runs) {
         return runs[a].frame_seconds() < runs[b].frame_seconds();
     });
     std::vector<std::size_t> front;
-    double best = -1;
-    for (const std::size_t i : order)
-        if (runs[i].diff.psnr_db > best) front.push_back(i), best = runs[i].diff.psnr_db;
+    for (const bool against_grid : {false, true}) {
+        double best = -1;
+        for (const std::size_t i : order)
+            if (runs[i].setting.against_grid == against_grid && runs[i].diff.psnr_db > best)
+                front.push_back(i), best = runs[i].diff.psnr_db;
+    }
     return front;
 }
 
@@ -221,7 +260,8 @@ void gnuplot(const std::string& script) {
 
 // Time against PSNR, a colour per knob, the Pareto front a line with its settings named; runs
 // identical to the exact image are drawn on a dashed line above the largest finite PSNR.
-void plot(const std::string& name, const std::vector<Run>& runs, const fs::path& dir) {
+void plot(const std::string& name, const std::vector<Run>& runs, const fs::path& dir,
+          const std::string& reference) {
     double top = 0;
     bool any_exact = false;
     for (const Run& r : runs) {
@@ -250,9 +290,9 @@ void plot(const std::string& name, const std::vector<Run>& runs, const fs::path&
     for (const std::size_t i : pareto_front(runs)) script << point(runs[i]);
     script << "EOD\nset logscale x\nset grid\nset key outside right top\n"
            << "set xlabel 'frame time (s, log scale; GL context and shader compilation excluded)'\n"
-           << "set ylabel 'PSNR against the exact image (dB)'\n"
+           << "set ylabel 'PSNR against " << reference << " (dB)'\n"
            << "set title '" << name << ": time against error"
-           << (any_exact ? " (dashed line: identical to the exact image)" : "") << "'\n";
+           << (any_exact ? " (dashed line: identical to " + reference + ")" : "") << "'\n";
     if (any_exact)
         script << "set arrow from graph 0, first " << top << " to graph 1, first " << top
                << " nohead dashtype 2\n";
@@ -286,6 +326,7 @@ struct SceneResult {
     std::vector<Run> runs;
     CutoffBound reference_bound;
     double reference_seconds = 0;
+    double grid_seconds = 0; // the uniform 8×8 image the antialiasing knobs are measured against
 };
 
 void write_csv(const std::vector<SceneResult>& results, const fs::path& path) {
@@ -295,7 +336,7 @@ void write_csv(const std::vector<SceneResult>& results, const fs::path& path) {
            "seconds_context,seconds_compile,seconds_upload,seconds_raster,seconds_primary,"
            "seconds_shading,psnr_db,max_abs_error_255,fraction_over_1_255,id_agreement,"
            "rays_primary,rays_shadow,rays_reflection,rays_transmission,cutoff_bound_255,cutoff_"
-           "bound_held,pareto\n";
+           "bound_held,pareto,samples,antialias,aa_threshold,refined_pixels,reference\n";
     for (const SceneResult& sr : results) {
         const std::vector<std::size_t> front = pareto_front(sr.runs);
         for (std::size_t i = 0; i < sr.runs.size(); ++i) {
@@ -319,7 +360,10 @@ void write_csv(const std::vector<SceneResult>& results, const fs::path& path) {
                 << (r.agreement ? format("%.6f", *r.agreement) : "") << ',' << rays.primary << ','
                 << rays.shadow << ',' << rays.reflection << ',' << rays.transmission << ','
                 << r.bound.max << ',' << (r.bound_held ? (*r.bound_held ? "yes" : "no") : "") << ','
-                << (std::find(front.begin(), front.end(), i) != front.end() ? "yes" : "") << '\n';
+                << (std::find(front.begin(), front.end(), i) != front.end() ? "yes" : "") << ','
+                << s.samples << ',' << name_of(s.antialias) << ',' << s.aa_threshold << ','
+                << std::count(r.frame.result.refined.begin(), r.frame.result.refined.end(), 1)
+                << ',' << (s.against_grid ? "uniform 8x8" : "exact") << '\n';
         }
     }
     write_file_atomically(path, csv.str());
@@ -364,11 +408,14 @@ std::string markdown(const std::vector<SceneResult>& results, const TradeoffArgs
            << " s; its own cut-off bound is " << sr.reference_bound.max << "/255.\n\n"
            << "| error budget | fastest setting | frame time (s) | PSNR (dB) | max error |\n"
            << "|---|---|---:|---:|---:|\n";
+        // Against the exact image: the antialiasing runs have their own table below.
+        const auto exact = [](const Run& r) { return !r.setting.against_grid; };
         const std::vector<std::pair<std::string, std::function<bool(const Run&)>>> budgets = {
-            {"PSNR ≥ 40 dB", [](const Run& r) { return r.diff.psnr_db >= 40; }},
-            {"PSNR ≥ 50 dB", [](const Run& r) { return r.diff.psnr_db >= 50; }},
-            {"every pixel within 1/255", [](const Run& r) { return r.diff.max_abs_error <= 1; }},
-            {"exact", [](const Run& r) { return r.diff.max_abs_error == 0; }}};
+            {"PSNR ≥ 40 dB", [&](const Run& r) { return exact(r) && r.diff.psnr_db >= 40; }},
+            {"PSNR ≥ 50 dB", [&](const Run& r) { return exact(r) && r.diff.psnr_db >= 50; }},
+            {"every pixel within 1/255",
+             [&](const Run& r) { return exact(r) && r.diff.max_abs_error <= 1; }},
+            {"exact", [&](const Run& r) { return exact(r) && r.diff.max_abs_error == 0; }}};
         for (const auto& [budget, within] : budgets) {
             const Run* r = fastest(sr.runs, within);
             if (!r)
@@ -377,6 +424,28 @@ std::string markdown(const std::vector<SceneResult>& results, const TradeoffArgs
                 md << "| " << budget << " | " << r->label << " | "
                    << format("%.4f", r->frame_seconds()) << " | " << psnr_text(r->diff.psnr_db)
                    << " | " << r->diff.max_abs_error << "/255 |\n";
+        }
+        md << "\n### Antialiasing\n\n"
+           << "Against the uniform " << kGridReference << "×" << kGridReference
+           << " image of the default setting (ray traced, " << format("%.3f", sr.grid_seconds)
+           << " s): uniform grids, and adaptive at " << args.samples << "×" << args.samples
+           << " over its threshold (docs/ANTIALIASING.md).\n\n"
+           << "![" << sr.name << ": antialiasing, frame time against PSNR]("
+           << (plots / (sr.name + "-antialiasing.svg")).generic_string() << ")\n\n"
+           << "| setting | frame time (s) | PSNR (dB) | pixels within 2/255 | refined pixels |\n"
+           << "|---|---:|---:|---:|---:|\n";
+        for (const Run& r : sr.runs) {
+            if (!r.setting.against_grid) continue;
+            const std::vector<std::uint8_t>& refined = r.frame.result.refined;
+            md << "| " << r.label << " | " << format("%.4f", r.frame_seconds()) << " | "
+               << psnr_text(r.diff.psnr_db) << " | "
+               << format("%.2f%%", 100 * (1 - r.diff.fraction_over_two)) << " | "
+               << (refined.empty() ? std::string("–")
+                                   : format("%.1f%%", 100.0 *
+                                                          static_cast<double>(std::count(
+                                                              refined.begin(), refined.end(), 1)) /
+                                                          static_cast<double>(refined.size())))
+               << " |\n";
         }
         md << "\n<details><summary>Every run</summary>\n\n"
            << "| knob | setting | frame time (s) | PSNR (dB) | max error | off > 1/255 | id "
@@ -417,12 +486,15 @@ std::vector<SceneResult> prepare(const TradeoffArgs& args) {
     if (!args.summary.empty()) check_output(args.summary, "--summary"); // else inside -o
     std::vector<SceneResult> results;
     for (const fs::path& path : scene_paths(args)) {
-        SceneResult sr{path.stem().string(), path, load_scene_with_notes(path), {}, {}, 0};
+        SceneResult sr{path.stem().string(), path, load_scene_with_notes(path), {}, {}, 0, 0};
         if (!args.size.empty())
             std::tie(sr.scene.camera.width, sr.scene.camera.height) =
                 parse_size(args.size, "--size");
-        // The exact image, its float twin and the run being measured are alive together.
-        check_frame_memory(sr.scene, Mode::hybrid, 3);
+        // The exact image, its float twin and the run being measured are alive together, and
+        // the antialiasing runs draw an item buffer of --samples² samples a pixel.
+        Scene sampled = sr.scene;
+        sampled.render.samples = args.samples;
+        check_frame_memory(sampled, Mode::hybrid, 3);
         results.push_back(std::move(sr));
     }
     return results;
@@ -459,7 +531,16 @@ int run_tradeoff(const TradeoffArgs& args) {
         const Image untruncated_float =
             render_frame(deep, std::nullopt, deep_ray, nullptr, geometry).result.image;
 
-        const auto settings = sweep(scene);
+        // The antialiasing knobs' reference: the default setting's uniform 8×8 image, ray traced.
+        Setting grid_setting;
+        grid_setting.frame.mode = Mode::ray;
+        grid_setting.max_depth = scene.render.max_depth;
+        grid_setting.min_reflectivity = scene.render.min_reflectivity;
+        grid_setting.samples = kGridReference;
+        const Run grid = render_once(scene, grid_setting, args, geometry);
+        sr.grid_seconds = grid.total_seconds();
+
+        const auto settings = sweep(scene, args.samples);
         std::map<std::string, std::size_t> seen;
         std::printf("%s (%dx%d): %zu settings\n", sr.name.c_str(), scene.camera.width,
                     scene.camera.height, settings.size());
@@ -473,13 +554,15 @@ int run_tradeoff(const TradeoffArgs& args) {
             run.knobs = knob;
             run.label = label;
             const RenderResult& result = run.frame.result;
-            run.diff = compare_images(reference.result.image, result.image);
-            if (setting.divisor == 1)
+            run.diff = compare_images(setting.against_grid ? grid.frame.result.image
+                                                           : reference.result.image,
+                                      result.image);
+            if (setting.divisor == 1 && !setting.against_grid)
                 run.agreement = id_agreement(reference.result.ids, result.ids);
             if (setting.frame.precision == Precision::f32 && setting.frame.mode == Mode::ray &&
                 setting.divisor == 1)
                 run.bound_held = cutoff_violations(run.bound, result.image, untruncated_float) == 0;
-            std::printf("  %-36s %8.4f s  PSNR %6s dB  max error %3d/255\n", label.c_str(),
+            std::printf("  %-44s %8.4f s  PSNR %6s dB  max error %3d/255\n", label.c_str(),
                         run.frame_seconds(), psnr_text(run.diff.psnr_db).c_str(),
                         run.diff.max_abs_error);
             std::fflush(stdout);
@@ -487,7 +570,11 @@ int run_tradeoff(const TradeoffArgs& args) {
             seen[label] = sr.runs.size();
             sr.runs.push_back(std::move(run));
         }
-        plot(sr.name, sr.runs, out);
+        // Two plots: the knobs against the exact image, and antialiasing against 8×8.
+        std::vector<Run> exact_runs, grid_runs;
+        for (Run& r : sr.runs) (r.setting.against_grid ? grid_runs : exact_runs).push_back(r);
+        plot(sr.name, exact_runs, out, "the exact image");
+        plot(sr.name + "-antialiasing", grid_runs, out, "the uniform 8x8 image");
     }
     write_csv(results, out / "tradeoff.csv");
     write_file_atomically(summary, markdown(results, args, plots, gl_renderer, watch.seconds()));
@@ -516,6 +603,11 @@ Command add_tradeoff_command(CLI::App& app) {
         ->check(CLI::IsMember(all_names<GlBackend>()));
     cmd->add_option("--threads", args->threads, "Worker threads; default all cores")
         ->check(CLI::Range(1, 1024));
+    cmd->add_option("--samples", args->samples,
+                    "Antialiasing knobs: uniform grids 1 to N, and adaptive at NxN, each against "
+                    "the uniform 8x8 image")
+        ->capture_default_str()
+        ->check(CLI::Range(1, kMaxSamples));
     return {cmd, [args] { prepare(*args); },
             [args] { return guarded([&] { return run_tradeoff(*args); }); }};
 }

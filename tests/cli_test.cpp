@@ -108,7 +108,7 @@ TEST(Cli, TradeoffWritesTheCsvAPlotPerSceneAndTheSummary) {
     const auto column = [&](const std::string& name) {
         return std::find(header.begin(), header.end(), name) - header.begin();
     };
-    int rows = 0, on_front = 0, bounds_checked = 0;
+    int rows = 0, on_front = 0, bounds_checked = 0, grids = 0, adaptive = 0;
     while (std::getline(csv, line)) {
         const std::vector<std::string> row = fields(line);
         ASSERT_EQ(row.size(), header.size()) << line;
@@ -116,11 +116,23 @@ TEST(Cli, TradeoffWritesTheCsvAPlotPerSceneAndTheSummary) {
         on_front += row[column("pareto")] == "yes";
         EXPECT_NE(row[column("cutoff_bound_held")], "no") << line;
         bounds_checked += row[column("cutoff_bound_held")] == "yes";
-        EXPECT_EQ(std::stoul(row[column("rays_primary")]), row[column("divisor")] == "1"   ? 1200u
-                                                           : row[column("divisor")] == "2" ? 300u
-                                                                                           : 70u)
+        const unsigned long n = std::stoul(row[column("samples")]);
+        const unsigned long primary = std::stoul(row[column("rays_primary")]);
+        if (row[column("antialias")] == "adaptive") {
+            // The centres, then the grids of the refined pixels.
+            EXPECT_EQ(primary, 1200u + n * n * std::stoul(row[column("refined_pixels")])) << line;
+            EXPECT_EQ(row[column("reference")], "uniform 8x8") << line;
+            ++adaptive;
+            continue;
+        }
+        EXPECT_EQ(primary, n * n * (row[column("divisor")] == "1"   ? 1200u
+                                    : row[column("divisor")] == "2" ? 300u
+                                                                    : 70u))
             << line;
+        grids += row[column("reference")] == "uniform 8x8";
     }
+    EXPECT_EQ(grids, 4);    // uniform 1×1 to 4×4 against 8×8
+    EXPECT_EQ(adaptive, 5); // adaptive 4×4 over five thresholds
     EXPECT_GE(rows, 30); // every knob's values, a setting reached by two knobs once
     EXPECT_GE(on_front, 1);
     EXPECT_GE(bounds_checked, 10); // every float ray-mode run at full size
@@ -130,6 +142,10 @@ TEST(Cli, TradeoffWritesTheCsvAPlotPerSceneAndTheSummary) {
     EXPECT_NE(summary.find("## default (40×30, 10 objects)"), std::string::npos) << summary;
     EXPECT_NE(summary.find("| PSNR ≥ 40 dB |"), std::string::npos) << summary;
     EXPECT_NE(summary.find("](./default.svg)"), std::string::npos) << summary;
+    EXPECT_NE(summary.find("](./default-antialiasing.svg)"), std::string::npos) << summary;
+    EXPECT_NE(summary.find("| hybrid mesh tess 32 4x4 adaptive 0.02 |"), std::string::npos)
+        << summary;
+    EXPECT_GT(fs::file_size(dir / "sweep" / "default-antialiasing.svg"), 0u);
 }
 
 // The commands take NFF files and scenes with OBJ meshes as they take JSON scenes.
@@ -243,6 +259,8 @@ INSTANTIATE_TEST_SUITE_P(EveryClass, BadRunTest, ::testing::Values(
     BadRun{"scene: unknown antialiasing", R"({"render": {"antialias": "jitter"}})", "render scene.json", "scene.json: /render/antialias: expected uniform or adaptive"},
     BadRun{"scene: threshold out of range", R"({"render": {"aa_threshold": -0.1}})", "render scene.json", "scene.json: /render/aa_threshold: must be between 0 and 1"},
     BadRun{"sample grid beyond GL", "", "render --size 3840x2160 --samples 16", "a 3840x2160 image with 16x16 samples needs an item buffer of 61440x34560, beyond the largest GL draws (16384 a side): use fewer samples, a smaller --size, or --mode ray"},
+    BadRun{"adaptive map without adaptive", "", "render --aa-map map.png", "--aa-map map.png: maps adaptive antialiasing; give --aa adaptive and --samples N > 1"},
+    BadRun{"tradeoff: samples beyond 16", "", "tradeoff --samples 20", "--samples"},
     BadRun{"stats into a missing directory", "", "render --stats no/dir/s.json", "--stats no/dir/s.json: directory no/dir does not exist"}
 ), [](const auto& info) { return testing::test_name(info.param.what); });
 // clang-format on

@@ -8,7 +8,7 @@ namespace glint {
 ImageDifference compare_images(const Image& reference, const Image& test) {
     double squared = 0;
     int max_error = 0;
-    std::uint64_t over = 0;
+    std::uint64_t over = 0, over_two = 0;
     for (std::size_t i = 0; i < reference.rgb.size(); i += 3) {
         int pixel_max = 0;
         for (int c = 0; c < 3; ++c) {
@@ -18,12 +18,14 @@ ImageDifference compare_images(const Image& reference, const Image& test) {
         }
         max_error = std::max(max_error, pixel_max);
         over += pixel_max > 1;
+        over_two += pixel_max > 2;
     }
     const double pixels = static_cast<double>(reference.rgb.size() / 3);
     const double mse = squared / (3 * pixels);
     return {mse == 0 ? std::numeric_limits<double>::infinity()
                      : 10 * std::log10(255.0 * 255.0 / mse),
-            max_error, static_cast<double>(over) / pixels, over};
+            max_error, static_cast<double>(over) / pixels, over,
+            static_cast<double>(over_two) / pixels};
 }
 
 Image difference_heatmap(const Image& reference, const Image& test) {

@@ -12,6 +12,7 @@ struct ImageDifference {
     int max_abs_error;        // in 1/255 steps
     double fraction_over_one; // pixels with any channel off by more than 1/255
     std::uint64_t pixels_over_one;
+    double fraction_over_two; // pixels with any channel off by more than 2/255
 };
 
 ImageDifference compare_images(const Image& reference, const Image& test);
