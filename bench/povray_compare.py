@@ -203,17 +203,12 @@ def difference(a, b):
     return total / len(x), off / (w * h)
 
 
-def write_difference_map(a, b, path):
-    """A PNG of image b at a third of its brightness, red where it differs from a by > 8/255."""
-    (w, h, x), (_, _, y) = read_png(a), read_png(b)
+def write_png(path, w, h, rgb):
+    """An 8-bit RGB PNG of `rgb` (3 bytes a pixel, rows top first)."""
     rows = bytearray()
     for j in range(h):
         rows.append(0)  # filter type: none
-        for p in range(3 * w * j, 3 * w * (j + 1), 3):
-            if max(abs(x[p + c] - y[p + c]) for c in range(3)) > 8:
-                rows += b"\xff\x00\x00"
-            else:
-                rows += bytes(v // 3 for v in y[p:p + 3])
+        rows += rgb[3 * w * j:3 * w * (j + 1)]
 
     def chunk(kind, data):
         return (struct.pack(">I", len(data)) + kind + data
@@ -222,6 +217,18 @@ def write_difference_map(a, b, path):
     with open(path, "wb") as f:
         f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0))
                 + chunk(b"IDAT", zlib.compress(bytes(rows))) + chunk(b"IEND", b""))
+
+
+def write_difference_map(a, b, path):
+    """A PNG of image b at a third of its brightness, red where it differs from a by > 8/255."""
+    (w, h, x), (_, _, y) = read_png(a), read_png(b)
+    out = bytearray()
+    for p in range(0, 3 * w * h, 3):
+        if max(abs(x[p + c] - y[p + c]) for c in range(3)) > 8:
+            out += b"\xff\x00\x00"
+        else:
+            out += bytes(v // 3 for v in y[p:p + 3])
+    write_png(path, w, h, out)
 
 
 def pov_seconds(log, name):

@@ -29,8 +29,10 @@ RefineJob::RefineJob(std::shared_ptr<const World> world, std::shared_ptr<const I
     const RenderSettings& settings = world_->settings();
     if (settings.samples > 1) {
         passes_ = 2;
-        if (settings.antialias == Antialias::adaptive)
+        if (settings.antialias == Antialias::adaptive) {
+            passes_ = 3; // the rule's spreading (trace/sampling.h, rule 4), after the grids
             path_keys_.assign(static_cast<std::size_t>(width) * height, 0);
+        }
     }
 }
 
@@ -43,6 +45,7 @@ const Image& RefineJob::traced(View view, int passes) const {
     case View::reflections:
         return reflections_;
     default:
+        if (passes > 2 && passes_ > 2) return spread_;
         return passes > 1 && passes_ > 1 ? sampled_ : final_;
     }
 }
@@ -53,8 +56,8 @@ TileRect RefineJob::tile(int index) const {
 }
 
 void RefineJob::work(const std::atomic<bool>& cancel) {
-    const int tiles = tile_count();
-    for (int k = next_++; k < passes_ * tiles && !cancel.load(std::memory_order_relaxed);
+    const int tiles = tile_count(), tile_passes = std::min(passes_, 2);
+    for (int k = next_++; k < tile_passes * tiles && !cancel.load(std::memory_order_relaxed);
          k = next_++) {
         const int index = order_[static_cast<std::size_t>(k % tiles)];
         if (k < tiles) {
@@ -64,8 +67,13 @@ void RefineJob::work(const std::atomic<bool>& cancel) {
             refine_tile(tile(index));
         }
         done_[index].fetch_add(1, std::memory_order_acq_rel);
-        const int done = tiles_done_.fetch_add(1, std::memory_order_acq_rel) + 1;
+        int done = tiles_done_.fetch_add(1, std::memory_order_acq_rel) + 1;
         if (done == tiles && passes_ > 1) plan_refinement();
+        if (done == 2 * tiles && passes_ > 2) {
+            spread(cancel); // by this worker alone, then every tile is done a third time
+            for (int t = 0; t < tiles; ++t) done_[t].fetch_add(1, std::memory_order_acq_rel);
+            done = tiles_done_.fetch_add(tiles, std::memory_order_acq_rel) + tiles;
+        }
         if (done == passes_ * tiles) {
             const std::lock_guard lock(totals_mutex_);
             seconds_ = watch_.seconds();
@@ -115,6 +123,38 @@ void RefineJob::refine_tile(const TileRect& rect) {
     }
     const std::lock_guard lock(totals_mutex_);
     rays_ += counts;
+}
+
+// Rule 4 of the adaptive rule, round by round as trace_frame applies it, into a copy of the
+// second pass's image.
+void RefineJob::spread(const std::atomic<bool>& cancel) {
+    const World& world = *world_;
+    const int n = world.settings().samples;
+    spread_ = sampled_;
+    std::vector<Hit> hits(static_cast<std::size_t>(n) * n);
+    RayCounts counts;
+    PrimaryStats unused;
+    std::uint64_t refined = 0;
+    for (int round = 0; round < kMaxSpreadRounds && !cancel.load(std::memory_order_relaxed);
+         ++round) {
+        std::size_t added = 0;
+        const std::vector<std::uint8_t> next =
+            adaptive_spread(final_, spread_, refine_, world.settings().aa_threshold, added);
+        if (added == 0) break;
+        for (std::size_t i = 0; i < next.size(); ++i) {
+            if (!next[i]) continue;
+            const int x = static_cast<int>(i % width()), y = static_cast<int>(i / width());
+            grid_hits(world, {}, x, y, hits.data(), unused);
+            const GridPixel pixel = shade_grid(world, x, y, hits.data());
+            store_colour(pixel.mean, spread_.pixel(x, y));
+            counts += pixel.rays;
+            refine_[i] = 1;
+        }
+        refined += added;
+    }
+    const std::lock_guard lock(totals_mutex_);
+    rays_ += counts;
+    refined_ += refined;
 }
 
 std::uint64_t RefineJob::refined_pixels() const {

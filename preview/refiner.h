@@ -4,7 +4,8 @@
 // computed exactly as `glint render` computes it, so a finished job is the headless image.
 // With the scene's samples N > 1, a second pass follows the first (one sample a pixel, from the
 // same item buffer): every pixel's N×N grid, or with adaptive antialiasing the pixels the rule
-// refines from the first pass (trace/sampling.h), the samples' primary hits cast as rays.
+// refines from the first pass (trace/sampling.h), the samples' primary hits cast as rays; with
+// adaptive, a third pass (one worker) spreads the refinement as the rule's last part says.
 #pragma once
 
 #include "preview/views.h"
@@ -40,7 +41,7 @@ class RefineJob {
     // read a tile's pixels only once tile_passes says that many are done. Only the final view
     // changes in the second pass, which writes a copy of the first's image, so a tile shown
     // after the first pass is never written again.
-    const Image& traced(View view, int passes = 2) const;
+    const Image& traced(View view, int passes = 3) const;
     int tile_count() const { return static_cast<int>(order_.size()); } // per pass
     TileRect tile(int index) const;                                    // in row-major tile order
     int passes() const { return passes_; }
@@ -66,6 +67,7 @@ class RefineJob {
     void refine_tile(const TileRect& rect);
     // After the first pass's last tile: which pixels the second pass refines.
     void plan_refinement();
+    void spread(const std::atomic<bool>& cancel);
     // Until the first pass is done and planned; false if cancelled first.
     bool wait_for_first_pass(const std::atomic<bool>& cancel);
 
@@ -75,6 +77,7 @@ class RefineJob {
     bool compare_with_ray_;
     Image final_, normals_, difference_, reflections_;
     Image sampled_; // the final view after the second pass
+    Image spread_;  // and after adaptive's spreading (the third)
     int tiles_x_;
     std::vector<int> order_; // tile indices, nearest the image centre first
     int passes_ = 1;

@@ -149,6 +149,27 @@ TEST(Antialiasing, TheAdaptiveRuleRefinesAroundKeysContrastAndMixedSampleIds) {
     EXPECT_EQ(r[3 * w + 4], 1);
 }
 
+// Rule 4: around a refined pixel whose grid's mean differs from its centre by more than the
+// threshold, the unrefined neighbours are refined next; a refined pixel that changed less adds
+// nothing.
+TEST(Antialiasing, RefinementSpreadsWhereAGridFoundMoreThanItsCentre) {
+    const int w = 5, h = 4;
+    const Image first(w, h);
+    Image current(w, h);
+    std::vector<std::uint8_t> refined(w * h, 0);
+    refined[1 * w + 1] = refined[1 * w + 2] = refined[2 * w + 4] = 1;
+    current.pixel(1, 1)[2] = 30; // 30/255 > 0.1: spreads
+    current.pixel(4, 2)[0] = 20; // 20/255 < 0.1: does not
+    std::size_t added = 0;
+    const std::vector<std::uint8_t> next = adaptive_spread(first, current, refined, 0.1f, added);
+    EXPECT_EQ(added, 7u); // (1, 1)'s 8 neighbours but refined (2, 1)
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            EXPECT_EQ(next[y * w + x],
+                      std::abs(x - 1) <= 1 && std::abs(y - 1) <= 1 && !refined[y * w + x])
+                << x << ", " << y;
+}
+
 TEST(Antialiasing, UniformGridsCastNSquaredPrimaryRaysAndAverageTheCutOffWeights) {
     const World one(default_scene(40, 30, 1));
     const World four(default_scene(40, 30, 4));

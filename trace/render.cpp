@@ -74,7 +74,20 @@ RenderResult trace_frame(const World& world, const PrimarySource& source, Primar
         return adaptive_refinement(result.image, path_keys, source.sample_ids, settings.samples,
                                    settings.aa_threshold);
     });
+    const Image first = result.image;
     supersample(world, source, &result.refined, result, stats, progress, times);
+    // Rule 4: refine around refined pixels whose grid found more than their centre did (not
+    // counted as progress: how far it spreads is not known beforehand).
+    for (int round = 0; round < kMaxSpreadRounds; ++round) {
+        std::size_t added = 0;
+        const std::vector<std::uint8_t> next = timed(times.shading, [&] {
+            return adaptive_spread(first, result.image, result.refined, settings.aa_threshold,
+                                   added);
+        });
+        if (added == 0) break;
+        supersample(world, source, &next, result, stats, {progress.threads, nullptr}, times);
+        for (std::size_t i = 0; i < next.size(); ++i) result.refined[i] |= next[i];
+    }
     return result;
 }
 

@@ -4,6 +4,7 @@
 #include "trace/stopwatch.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <mutex>
 
@@ -16,6 +17,11 @@ bool contrasts(const std::uint8_t* p, const std::uint8_t* q, int limit) {
     for (int c = 0; c < 3; ++c)
         if (std::abs(int(p[c]) - int(q[c])) > limit) return true;
     return false;
+}
+
+// Bytes differ by more than threshold·255 (a threshold of 0 refines any difference at all).
+int contrast_limit(float threshold) {
+    return static_cast<int>(std::floor(threshold * 255.0f + 1e-4f));
 }
 
 // Whether the n×n ids of pixel (x, y) in the sample grid's id image are not all one id.
@@ -38,8 +44,7 @@ std::vector<std::uint8_t> adaptive_refinement(const Image& first,
                                               const std::vector<std::uint64_t>& path_keys,
                                               const IdImage* sample_ids, int n, float threshold) {
     const int width = first.width, height = first.height;
-    // Bytes differ by more than threshold·255 (a threshold of 0 refines any difference at all).
-    const int limit = static_cast<int>(std::floor(threshold * 255.0f + 1e-4f));
+    const int limit = contrast_limit(threshold);
     std::vector<std::uint8_t> refine(static_cast<std::size_t>(width) * height, 0);
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
@@ -58,6 +63,30 @@ std::vector<std::uint8_t> adaptive_refinement(const Image& first,
         }
     }
     return refine;
+}
+
+std::vector<std::uint8_t> adaptive_spread(const Image& first, const Image& current,
+                                          const std::vector<std::uint8_t>& refined, float threshold,
+                                          std::size_t& added) {
+    const int width = first.width, height = first.height;
+    const int limit = contrast_limit(threshold);
+    std::vector<std::uint8_t> next(refined.size(), 0);
+    added = 0;
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const std::size_t q = static_cast<std::size_t>(y) * width + x;
+            if (!refined[q] || !contrasts(first.pixel(x, y), current.pixel(x, y), limit)) continue;
+            for (int dy = -1; dy <= 1; ++dy) {
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int px = x + dx, py = y + dy;
+                    if (px < 0 || py < 0 || px >= width || py >= height) continue;
+                    const std::size_t p = static_cast<std::size_t>(py) * width + px;
+                    if (!refined[p] && !next[p]) next[p] = 1, ++added;
+                }
+            }
+        }
+    }
+    return next;
 }
 
 void grid_hits(const World& world, const PrimarySource& source, int x, int y, Hit* hits,

@@ -24,6 +24,18 @@ std::vector<std::uint8_t> adaptive_refinement(const Image& first,
                                               const std::vector<std::uint64_t>& path_keys,
                                               const IdImage* sample_ids, int n, float threshold);
 
+// The rule's last part, applied after each round of refinement until it adds nothing (at most
+// kMaxSpreadRounds rounds):
+//   4. an unrefined pixel next to (8-neighbour of) a refined pixel whose grid's mean, in
+//      `current`, differs from its one-sample colour in `first` by more than threshold · 255 in
+//      any channel: detail finer than the pixel spacing that the first pass aliased away (a
+//      checker seen far off or through glass), which spreads until it is enclosed.
+// Returns the pixels to refine next (1), and none when the rule adds nothing.
+std::vector<std::uint8_t> adaptive_spread(const Image& first, const Image& current,
+                                          const std::vector<std::uint8_t>& refined, float threshold,
+                                          std::size_t& added);
+inline constexpr int kMaxSpreadRounds = 16;
+
 // The primary hits of pixel (x, y)'s N×N samples (N = world.settings().samples) into hits[0…N²),
 // b outer, a inner: from source.sample_ids when given, else by camera ray.
 void grid_hits(const World& world, const PrimarySource& source, int x, int y, Hit* hits,
