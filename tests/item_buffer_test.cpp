@@ -181,7 +181,9 @@ TEST_P(GlTest, HybridEqualsRayModeWithSamplesUniformAndAdaptive) {
 // A box 0.3 pixels wide standing on the boundary between two pixel columns: every pixel centre
 // misses it, so ray mode's one-sample pass sees background only and refines nothing, while the
 // 4×4 item buffer names it in the samples at ±0.125 pixels from the boundary. Adaptive hybrid
-// refines exactly those two columns (where the box spans) and renders them as uniform 4×4 does.
+// refines those two columns (where the box spans), then, since their grids found the box that
+// their centres missed, spreads to the ring around them (rule 4), whose grids see background
+// only and stop it; it renders all of them as uniform 4×4 does.
 TEST_P(GlTest, AdaptiveHybridFindsAnObjectThatFallsBetweenPixelCentres) {
     // 16×16 pixels, one world unit each at z = 0: tan(fov_y/2) = 8/10.
     Scene scene = parse_scene(R"({
@@ -208,7 +210,8 @@ TEST_P(GlTest, AdaptiveHybridFindsAnObjectThatFallsBetweenPixelCentres) {
         for (int y = 0; y < 16; ++y) {
             for (int x = 0; x < 16; ++x) {
                 const bool spans = (x == 7 || x == 8) && y >= 2 && y <= 13;
-                EXPECT_EQ(hybrid.result.refined[y * 16 + x], spans ? 1 : 0) << x << ", " << y;
+                const bool ring = x >= 6 && x <= 9 && y >= 1 && y <= 14;
+                EXPECT_EQ(hybrid.result.refined[y * 16 + x], ring ? 1 : 0) << x << ", " << y;
                 const std::uint8_t* p = hybrid.result.image.pixel(x, y);
                 EXPECT_TRUE(std::equal(p, p + 3, uniform.result.image.pixel(x, y)));
                 if (spans) {
