@@ -236,8 +236,13 @@ Scene random_scene(unsigned seed) {
 // glint's image against the reference on every pixel whose 3×3 neighbourhood follows one path
 // (no edge through it), within `tolerance`/255; returns how many pixels were compared and how
 // many of those reflected.
-std::pair<int, int> expect_matches_reference(const Scene& scene, const std::string& label,
-                                             int tolerance = 2) {
+struct ReferenceMatch {
+    int compared = 0, reflected = 0;
+    double within_two = 0; // of every pixel, edges included: the share within 2/255
+};
+
+ReferenceMatch expect_matches_reference(const Scene& scene, const std::string& label,
+                                        int tolerance = 2) {
     const Image image = render(World(scene)).image;
     const ReferenceRenderer reference(scene);
     const int w = scene.camera.width, h = scene.camera.height;
@@ -246,7 +251,16 @@ std::pair<int, int> expect_matches_reference(const Scene& scene, const std::stri
     for (int j = 0; j < h; ++j)
         for (int i = 0; i < w; ++i)
             std::tie(colours[j * w + i], keys[j * w + i]) = reference.pixel(i, j);
-    int compared = 0, reflected = 0;
+    int compared = 0, reflected = 0, within_two = 0;
+    for (int j = 0; j < h; ++j) {
+        for (int i = 0; i < w; ++i) {
+            bool within = true;
+            for (int k = 0; k < 3; ++k)
+                within &= std::abs(image.pixel(i, j)[k] -
+                                   std::lround(255 * colours[j * w + i][k])) <= 2;
+            within_two += within;
+        }
+    }
     for (int j = 1; j + 1 < h; ++j) {
         for (int i = 1; i + 1 < w; ++i) {
             bool interior = true; // same path key as all 8 neighbours: no edge through this pixel
@@ -264,14 +278,14 @@ std::pair<int, int> expect_matches_reference(const Scene& scene, const std::stri
             reflected += keys[j * w + i] > 1000003u * 64u; // the path went beyond its first hit
         }
     }
-    return {compared, reflected};
+    return {compared, reflected, static_cast<double>(within_two) / (w * h)};
 }
 
 class ReferenceTest : public ::testing::TestWithParam<unsigned> {};
 
 TEST_P(ReferenceTest, GlintMatchesAnIndependentRendererAwayFromEdges) {
     const Scene scene = random_scene(GetParam());
-    const auto [compared, reflected] =
+    const auto [compared, reflected, within_two] =
         expect_matches_reference(scene, "seed " + std::to_string(GetParam()));
     // Enough pixels compared for the test to mean something.
     EXPECT_GT(compared, scene.camera.width * scene.camera.height / 2) << "seed " << GetParam();
@@ -304,7 +318,7 @@ TEST(Reference, NoShadowOrReflectionAcneWhereMillimetreAndKilometreObjectsMeet) 
           {"shape": "box", "material": "small", "transform": [{"scale": 0.0005}, {"rotate": {"axis": [0, 1, 0], "degrees": 30}}, {"translate": [-0.002, 0.0005, 0.001]}]},
           {"shape": "sphere", "material": "mirror", "transform": [{"scale": 1000}, {"translate": [0, 1000, -3000]}]}]})",
                                     "mixed.json");
-    const auto [compared, reflected] = expect_matches_reference(scene, "mixed scales", 8);
+    const auto [compared, reflected, within_two] = expect_matches_reference(scene, "mixed scales", 8);
     EXPECT_GT(compared, scene.camera.width * scene.camera.height / 2);
     EXPECT_GT(reflected, compared / 2) << "the floor and the small objects all reflect";
 }
@@ -322,7 +336,7 @@ TEST_P(GlassReferenceTest, GlintMatchesAnIndependentRendererOnGlassScenes) {
     glass.ior = 1.45f;
     glass.reflectivity = 0.1f;
     glass.diffuse = glm::vec3(0.05f);
-    const auto [compared, reflected] =
+    const auto [compared, reflected, within_two] =
         expect_matches_reference(scene, "glass seed " + std::to_string(GetParam()));
     // Checker cells and refracted edges leave fewer pixels off every edge than the opaque scenes
     // do: a fifth of the image (1,382 pixels) must still be compared (measured: 1,612 to 2,142).
@@ -347,10 +361,15 @@ TEST_P(SampledReferenceTest, GlintsSampleGridMatchesAnIndependentRenderer) {
     const std::string label = "seed " + std::to_string(seed) + ", " +
                               std::to_string(scene.render.samples) + "x" +
                               std::to_string(scene.render.samples);
-    const auto [compared, reflected] = expect_matches_reference(scene, label);
+    const auto [compared, reflected, within_two] = expect_matches_reference(scene, label);
     // A 3×3 grid sees an edge a third of a pixel further than one sample does, so fewer pixels
     // are left to compare: measured 1,183 (seed 4, glass) to 4,447 of 6,912.
     EXPECT_GT(compared, scene.camera.width * scene.camera.height / 8) << label;
+    // Issue 24's goal, on every pixel, edges included: at a silhouette one sample in N² may
+    // flip between two objects (float against double), which moves the mean by 1/N² of the
+    // step there. Measured: 99.93% to 100% of the pixels.
+    EXPECT_GE(within_two, 0.995) << label;
+    RecordProperty("within_2_255", std::to_string(within_two));
     EXPECT_GT(reflected, 0) << label;
 }
 
