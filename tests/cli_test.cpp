@@ -57,7 +57,7 @@ void write(const fs::path& path, const std::string& text) {
 TEST(Cli, RenderWritesThePngAndReportsPathTimeAndRayCounts) {
     const fs::path dir = fresh_dir();
     const Outcome r = glint(dir, "render '" GLINT_SOURCE_DIR
-                                 "/scenes/default.json' -o a.png --size 64x48 --stats s.json");
+                                 "/scenes/default.json' -o a.png --size 64x48 --samples 1 --stats s.json");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("wrote a.png (64x48"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find(" s (render "), std::string::npos) << r.out;
@@ -259,7 +259,7 @@ INSTANTIATE_TEST_SUITE_P(EveryClass, BadRunTest, ::testing::Values(
     BadRun{"scene: unknown antialiasing", R"({"render": {"antialias": "jitter"}})", "render scene.json", "scene.json: /render/antialias: expected uniform or adaptive"},
     BadRun{"scene: threshold out of range", R"({"render": {"aa_threshold": -0.1}})", "render scene.json", "scene.json: /render/aa_threshold: must be between 0 and 1"},
     BadRun{"sample grid beyond GL", "", "render --size 3840x2160 --samples 16", "a 3840x2160 image with 16x16 samples needs an item buffer of 61440x34560, beyond the largest GL draws (16384 a side): use fewer samples, a smaller --size, or --mode ray"},
-    BadRun{"adaptive map without adaptive", "", "render --aa-map map.png", "--aa-map map.png: maps adaptive antialiasing; give --aa adaptive and --samples N > 1"},
+    BadRun{"adaptive map without adaptive", "", "render --samples 1 --aa-map map.png", "--aa-map map.png: maps adaptive antialiasing; give --aa adaptive and --samples N > 1"},
     BadRun{"tradeoff: samples beyond 16", "", "tradeoff --samples 20", "--samples"},
     BadRun{"stats into a missing directory", "", "render --stats no/dir/s.json", "--stats no/dir/s.json: directory no/dir does not exist"}
 ), [](const auto& info) { return testing::test_name(info.param.what); });
@@ -303,7 +303,7 @@ TEST(Cli, AnImageLargerThanMemoryIsRefusedBeforeAllocating) {
     const fs::path dir = fresh_dir();
     for (const char* mode : {"ray", "hybrid"}) {
         const Outcome r =
-            glint(dir, std::string("render --size 16384x16384 -o a.png --mode ") + mode,
+            glint(dir, std::string("render --size 16384x16384 --samples 1 -o a.png --mode ") + mode,
                   "ulimit -v 4194304 &&");
         EXPECT_EQ(r.exit_code, 2) << mode << ": " << r.err;
         EXPECT_NE(r.err.find("a 16384x16384 image needs about"), std::string::npos) << r.err;

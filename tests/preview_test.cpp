@@ -50,6 +50,7 @@ class RefinerTest : public ::testing::TestWithParam<const char*> {};
 TEST_P(RefinerTest, TheSecondPassRefinesToTheScenesSamples) {
     for (const Antialias aa : {Antialias::uniform, Antialias::adaptive}) {
         Scene scene = shipped(GetParam(), 90, 70);
+        scene.render.samples = 1;
         const RenderResult centres = render(World(scene));
         scene.render.samples = 3, scene.render.antialias = aa;
         const auto world = std::make_shared<const World>(scene);
@@ -73,7 +74,9 @@ TEST_P(RefinerTest, TheSecondPassRefinesToTheScenesSamples) {
 // Tile by tile, centre first, on any number of threads: the same bytes as shade_image over the
 // same primary hits (ray mode, and hybrid from an id image), and the same ray counts.
 TEST_P(RefinerTest, AFinishedJobIsTheHeadlessImage) {
-    const auto world = std::make_shared<const World>(shipped(GetParam(), 150, 110));
+    Scene scene = shipped(GetParam(), 150, 110);
+    scene.render.samples = 1; // one pass; the next test refines to samples
+    const auto world = std::make_shared<const World>(scene);
     const RenderResult by_ray = render(*world);
     for (const int threads : {1, 3}) {
         auto job = std::make_shared<RefineJob>(world, nullptr, Resolve::exact);

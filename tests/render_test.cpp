@@ -15,9 +15,11 @@
 namespace glint {
 namespace {
 
+// scenes/default.json with one sample a pixel (antialiasing_test.cpp tests its samples).
 Scene default_scene(int width, int height) {
     Scene scene = load_scene(GLINT_SOURCE_DIR "/scenes/default.json");
     scene.camera.width = width, scene.camera.height = height;
+    scene.render.samples = 1;
     return scene;
 }
 
