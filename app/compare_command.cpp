@@ -72,6 +72,8 @@ void print_comparison(const CompareArgs& args, const Comparison& c) {
                 c.scene.camera.width, c.scene.camera.height, c.scene.objects.size(),
                 args.frame.describe().c_str(),
                 std::string(name_of(c.world.accelerator().kind())).c_str());
+    if (const std::string aa = describe_antialiasing(c.scene.render); !aa.empty())
+        std::printf("antialiasing: %s\n", aa.c_str());
     std::printf("GL: %s\n\n", c.hybrid.gl_renderer.c_str());
     std::printf("%-36s %9s %9s\n", "phase (seconds)", "ray", "hybrid");
     std::printf("%-36s %9s %s\n", "GL context creation", "-", seconds(h.context).c_str());
@@ -144,11 +146,24 @@ int run_compare(const CompareArgs& args) {
         write_png(args.prefix + "-ray.png", ray);
         write_png(args.prefix + "-hybrid.png", c.hybrid.result.image);
         write_png(args.prefix + "-diff.png", difference_heatmap(ray, c.hybrid.result.image));
-        if (c.hybrid.items)
-            write_png(
-                args.prefix + "-ids.png",
-                false_colour(c.hybrid.items->ids.ids, scene.camera.width, scene.camera.height));
-        std::printf("\nwrote %s-{ray,hybrid,diff,ids}.png\n", args.prefix.c_str());
+        // What the item buffer drew at each pixel centre, or, with a uniform sample grid and
+        // no centre pass, at each pixel's sample (N/2, N/2).
+        std::vector<std::uint32_t> drawn;
+        if (c.hybrid.items) {
+            drawn = c.hybrid.items->ids.ids;
+        } else if (c.hybrid.sample_items) {
+            const IdImage& grid = c.hybrid.sample_items->ids;
+            const int n = scene.render.samples;
+            for (int y = 0; y < scene.camera.height; ++y)
+                for (int x = 0; x < scene.camera.width; ++x)
+                    drawn.push_back(grid.ids[static_cast<std::size_t>(y * n + n / 2) * grid.width +
+                                             static_cast<std::size_t>(x * n + n / 2)]);
+        }
+        if (!drawn.empty())
+            write_png(args.prefix + "-ids.png",
+                      false_colour(drawn, scene.camera.width, scene.camera.height));
+        std::printf("\nwrote %s-{ray,hybrid,diff%s}.png\n", args.prefix.c_str(),
+                    drawn.empty() ? "" : ",ids");
     }
     if (!args.json.empty())
         write_file_atomically(args.json, comparison_json(args, c).dump(2) + "\n");
