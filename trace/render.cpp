@@ -51,15 +51,8 @@ std::vector<std::uint32_t> object_ids(const std::vector<Hit>& primary) {
 RenderResult trace_frame(const World& world, const PrimarySource& source, PrimaryStats& stats,
                          const TileProgress& progress, PhaseTimes& times) {
     const RenderSettings& settings = world.settings();
-    const PinholeCamera& camera = world.camera();
-    if (settings.samples > 1 && settings.antialias == Antialias::uniform) {
-        RenderResult result{Image(camera.width(), camera.height()), {}, {}, {}, {}};
-        const std::size_t pixels = static_cast<std::size_t>(camera.width()) * camera.height();
-        result.omitted_weight.assign(pixels, 0.0f);
-        result.ids.assign(pixels, 0);
-        supersample(world, source, nullptr, result, stats, progress, times);
-        return result;
-    }
+    if (settings.samples > 1 && settings.antialias == Antialias::uniform)
+        return render_uniform_grids(world, source, stats, progress, times);
     // One sample per pixel, at its centre: the whole image with N = 1, and adaptive
     // antialiasing's first pass.
     const bool adaptive = settings.samples > 1;
@@ -69,25 +62,7 @@ RenderResult trace_frame(const World& world, const PrimarySource& source, Primar
     RenderResult result = timed(times.shading, [&] {
         return shade_image(world, primary, progress, adaptive ? &path_keys : nullptr);
     });
-    if (!adaptive) return result;
-    result.refined = timed(times.shading, [&] {
-        return adaptive_refinement(result.image, path_keys, source.sample_ids, settings.samples,
-                                   settings.aa_threshold);
-    });
-    const Image first = result.image;
-    supersample(world, source, &result.refined, result, stats, progress, times);
-    // Rule 4: refine around refined pixels whose grid found more than their centre did (not
-    // counted as progress: how far it spreads is not known beforehand).
-    for (int round = 0; round < kMaxSpreadRounds; ++round) {
-        std::size_t added = 0;
-        const std::vector<std::uint8_t> next = timed(times.shading, [&] {
-            return adaptive_spread(first, result.image, result.refined, settings.aa_threshold,
-                                   added);
-        });
-        if (added == 0) break;
-        supersample(world, source, &next, result, stats, {progress.threads, nullptr}, times);
-        for (std::size_t i = 0; i < next.size(); ++i) result.refined[i] |= next[i];
-    }
+    if (adaptive) refine_adaptively(world, source, path_keys, result, stats, progress, times);
     return result;
 }
 

@@ -173,5 +173,39 @@ void supersample(const World& world, const PrimarySource& source,
     times.shading += seconds * (1 - primary_share);
 }
 
+RenderResult render_uniform_grids(const World& world, const PrimarySource& source,
+                                  PrimaryStats& stats, const TileProgress& progress,
+                                  PhaseTimes& times) {
+    const PinholeCamera& camera = world.camera();
+    const std::size_t pixels = static_cast<std::size_t>(camera.width()) * camera.height();
+    RenderResult result{Image(camera.width(), camera.height()), {}, {}, {}, {}};
+    result.omitted_weight.assign(pixels, 0.0f);
+    result.ids.assign(pixels, 0);
+    supersample(world, source, nullptr, result, stats, progress, times);
+    return result;
+}
+
+void refine_adaptively(const World& world, const PrimarySource& source,
+                       const std::vector<std::uint64_t>& path_keys, RenderResult& result,
+                       PrimaryStats& stats, const TileProgress& progress, PhaseTimes& times) {
+    const RenderSettings& settings = world.settings();
+    result.refined = timed(times.shading, [&] {
+        return adaptive_refinement(result.image, path_keys, source.sample_ids, settings.samples,
+                                   settings.aa_threshold);
+    });
+    const Image first = result.image;
+    supersample(world, source, &result.refined, result, stats, progress, times);
+    for (int round = 0; round < kMaxSpreadRounds; ++round) {
+        std::size_t added = 0;
+        const std::vector<std::uint8_t> next = timed(times.shading, [&] {
+            return adaptive_spread(first, result.image, result.refined, settings.aa_threshold,
+                                   added);
+        });
+        if (added == 0) break;
+        supersample(world, source, &next, result, stats, {progress.threads, nullptr}, times);
+        for (std::size_t i = 0; i < next.size(); ++i) result.refined[i] |= next[i];
+    }
+}
+
 } // namespace GLINT_PRECISION
 } // namespace glint

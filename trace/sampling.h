@@ -60,5 +60,19 @@ void supersample(const World& world, const PrimarySource& source,
                  const std::vector<std::uint8_t>* only, RenderResult& result, PrimaryStats& stats,
                  const TileProgress& progress, PhaseTimes& times);
 
+// Uniform antialiasing's frame: every pixel's grid mean (supersample), and as the pixel's id its
+// sample (N/2, N/2)'s object.
+RenderResult render_uniform_grids(const World& world, const PrimarySource& source,
+                                  PrimaryStats& stats, const TileProgress& progress,
+                                  PhaseTimes& times);
+
+// Adaptive antialiasing after its first pass (`result`, N = 1's image, with its `path_keys`):
+// rules 1 to 3 pick the pixels, supersample redoes them, and rule 4 spreads round by round
+// (those rounds are not counted as progress: how far it spreads is not known beforehand).
+// Leaves the map of refined pixels in result.refined.
+void refine_adaptively(const World& world, const PrimarySource& source,
+                       const std::vector<std::uint64_t>& path_keys, RenderResult& result,
+                       PrimaryStats& stats, const TileProgress& progress, PhaseTimes& times);
+
 } // namespace GLINT_PRECISION
 } // namespace glint
