@@ -56,8 +56,9 @@ void write(const fs::path& path, const std::string& text) {
 
 TEST(Cli, RenderWritesThePngAndReportsPathTimeAndRayCounts) {
     const fs::path dir = fresh_dir();
-    const Outcome r = glint(dir, "render '" GLINT_SOURCE_DIR
-                                 "/scenes/default.json' -o a.png --size 64x48 --samples 1 --stats s.json");
+    const Outcome r =
+        glint(dir, "render '" GLINT_SOURCE_DIR
+                   "/scenes/default.json' -o a.png --size 64x48 --samples 1 --stats s.json");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("wrote a.png (64x48"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find(" s (render "), std::string::npos) << r.out;
@@ -125,15 +126,16 @@ TEST(Cli, TradeoffWritesTheCsvAPlotPerSceneAndTheSummary) {
             ++adaptive;
             continue;
         }
-        EXPECT_EQ(primary, n * n * (row[column("divisor")] == "1"   ? 1200u
-                                    : row[column("divisor")] == "2" ? 300u
-                                                                    : 70u))
+        EXPECT_EQ(primary, n * n *
+                               (row[column("divisor")] == "1"   ? 1200u
+                                : row[column("divisor")] == "2" ? 300u
+                                                                : 70u))
             << line;
         grids += row[column("reference")] == "uniform 8x8";
     }
     EXPECT_EQ(grids, 4);    // uniform 1×1 to 4×4 against 8×8
     EXPECT_EQ(adaptive, 5); // adaptive 4×4 over five thresholds
-    EXPECT_GE(rows, 30); // every knob's values, a setting reached by two knobs once
+    EXPECT_GE(rows, 30);    // every knob's values, a setting reached by two knobs once
     EXPECT_GE(on_front, 1);
     EXPECT_GE(bounds_checked, 10); // every float ray-mode run at full size
     EXPECT_GT(fs::file_size(dir / "sweep" / "default.svg"), 0u);

@@ -256,8 +256,8 @@ ReferenceMatch expect_matches_reference(const Scene& scene, const std::string& l
         for (int i = 0; i < w; ++i) {
             bool within = true;
             for (int k = 0; k < 3; ++k)
-                within &= std::abs(image.pixel(i, j)[k] -
-                                   std::lround(255 * colours[j * w + i][k])) <= 2;
+                within &=
+                    std::abs(image.pixel(i, j)[k] - std::lround(255 * colours[j * w + i][k])) <= 2;
             within_two += within;
         }
     }
@@ -318,7 +318,8 @@ TEST(Reference, NoShadowOrReflectionAcneWhereMillimetreAndKilometreObjectsMeet) 
           {"shape": "box", "material": "small", "transform": [{"scale": 0.0005}, {"rotate": {"axis": [0, 1, 0], "degrees": 30}}, {"translate": [-0.002, 0.0005, 0.001]}]},
           {"shape": "sphere", "material": "mirror", "transform": [{"scale": 1000}, {"translate": [0, 1000, -3000]}]}]})",
                                     "mixed.json");
-    const auto [compared, reflected, within_two] = expect_matches_reference(scene, "mixed scales", 8);
+    const auto [compared, reflected, within_two] =
+        expect_matches_reference(scene, "mixed scales", 8);
     EXPECT_GT(compared, scene.camera.width * scene.camera.height / 2);
     EXPECT_GT(reflected, compared / 2) << "the floor and the small objects all reflect";
 }
