@@ -25,15 +25,12 @@ constexpr Real kDepthSlack = 1e-3_r;
 namespace {
 
 bool on_id_boundary(const IdImage& ids, int x, int y) {
-    const std::uint32_t id = ids.ids[static_cast<std::size_t>(y) * ids.width + x];
-    for (int dy = -1; dy <= 1; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx) {
-            const int nx = x + dx, ny = y + dy;
-            if (nx < 0 || ny < 0 || nx >= ids.width || ny >= ids.height) continue;
-            if (ids.ids[static_cast<std::size_t>(ny) * ids.width + nx] != id) return true;
-        }
-    }
-    return false;
+    const auto id = [&](int px, int py) {
+        return ids.ids[static_cast<std::size_t>(py) * ids.width + px];
+    };
+    const std::uint32_t own = id(x, y);
+    return any_in_neighbourhood(ids.width, ids.height, x, y,
+                                [&](int nx, int ny) { return id(nx, ny) != own; });
 }
 
 } // namespace

@@ -23,6 +23,17 @@ inline int tile_count(int width, int height) {
     return ((width + kTileSize - 1) / kTileSize) * ((height + kTileSize - 1) / kTileSize);
 }
 
+// Whether pred(nx, ny) holds for any pixel of the 3×3 neighbourhood of (x, y) (itself included)
+// that lies inside a width×height image; stops at the first that does. The exact resolve's edge
+// test and the adaptive antialiasing rule (trace/sampling.cpp) read neighbourhoods this way.
+template <class Pred>
+bool any_in_neighbourhood(int width, int height, int x, int y, const Pred& pred) {
+    for (int ny = std::max(0, y - 1); ny <= std::min(height - 1, y + 1); ++ny)
+        for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx)
+            if (pred(nx, ny)) return true;
+    return false;
+}
+
 // Calls body(x0, y0, x1, y1) for each tile of a width×height image, in parallel.
 template <class Body>
 void for_each_tile(int width, int height, const TileProgress& progress, const Body& body) {
