@@ -107,20 +107,12 @@ bool RefineJob::wait_for_first_pass(const std::atomic<bool>& cancel) {
 // The second pass: the planned pixels' N×N grids, by camera ray (exact resolve would give the
 // same hits; the preview keeps one item buffer, of the pixel centres).
 void RefineJob::refine_tile(const TileRect& rect) {
-    const World& world = *world_;
-    const int n = world.settings().samples;
-    std::vector<Hit> hits(static_cast<std::size_t>(n) * n);
+    std::vector<Hit> hits;
     RayCounts counts;
-    PrimaryStats unused;
-    for (int y = rect.y0; y < rect.y1; ++y) {
-        for (int x = rect.x0; x < rect.x1; ++x) {
-            if (!refine_[static_cast<std::size_t>(y) * width() + x]) continue;
-            grid_hits(world, {}, x, y, hits.data(), unused);
-            const GridPixel pixel = shade_grid(world, x, y, hits.data());
-            store_colour(pixel.mean, sampled_.pixel(x, y));
-            counts += pixel.rays;
-        }
-    }
+    for (int y = rect.y0; y < rect.y1; ++y)
+        for (int x = rect.x0; x < rect.x1; ++x)
+            if (refine_[static_cast<std::size_t>(y) * width() + x])
+                counts += grid_into(sampled_, x, y, hits);
     const std::lock_guard lock(totals_mutex_);
     rays_ += counts;
 }
@@ -128,33 +120,29 @@ void RefineJob::refine_tile(const TileRect& rect) {
 // Rule 4 of the adaptive rule, round by round as trace_frame applies it, into a copy of the
 // second pass's image.
 void RefineJob::spread(const std::atomic<bool>& cancel) {
-    const World& world = *world_;
-    const int n = world.settings().samples;
     spread_ = sampled_;
-    std::vector<Hit> hits(static_cast<std::size_t>(n) * n);
+    std::vector<Hit> hits;
     RayCounts counts;
-    PrimaryStats unused;
-    std::uint64_t refined = 0;
-    for (int round = 0; round < kMaxSpreadRounds && !cancel.load(std::memory_order_relaxed);
-         ++round) {
-        std::size_t added = 0;
-        const std::vector<std::uint8_t> next =
-            adaptive_spread(final_, spread_, refine_, world.settings().aa_threshold, added);
-        if (added == 0) break;
-        for (std::size_t i = 0; i < next.size(); ++i) {
-            if (!next[i]) continue;
-            const int x = static_cast<int>(i % width()), y = static_cast<int>(i / width());
-            grid_hits(world, {}, x, y, hits.data(), unused);
-            const GridPixel pixel = shade_grid(world, x, y, hits.data());
-            store_colour(pixel.mean, spread_.pixel(x, y));
-            counts += pixel.rays;
-            refine_[i] = 1;
-        }
-        refined += added;
-    }
+    const std::size_t refined =
+        spread_refinement(final_, spread_, refine_, world_->settings().aa_threshold,
+                          [&](const std::vector<std::uint8_t>& next) {
+                              for (std::size_t i = 0; i < next.size(); ++i)
+                                  if (next[i])
+                                      counts += grid_into(spread_, static_cast<int>(i % width()),
+                                                          static_cast<int>(i / width()), hits);
+                              return !cancel.load(std::memory_order_relaxed);
+                          });
     const std::lock_guard lock(totals_mutex_);
     rays_ += counts;
     refined_ += refined;
+}
+
+// Pixel (x, y)'s grid mean into `image`, its samples cast as rays; returns their ray counts.
+RayCounts RefineJob::grid_into(Image& image, int x, int y, std::vector<Hit>& hits) const {
+    PrimaryStats unused; // counted only when resolving ids
+    const GridPixel pixel = trace_grid(*world_, {}, x, y, hits, unused);
+    store_colour(pixel.mean, image.pixel(x, y));
+    return pixel.rays;
 }
 
 std::uint64_t RefineJob::refined_pixels() const {

@@ -68,6 +68,7 @@ class RefineJob {
     // After the first pass's last tile: which pixels the second pass refines.
     void plan_refinement();
     void spread(const std::atomic<bool>& cancel);
+    RayCounts grid_into(Image& image, int x, int y, std::vector<Hit>& hits) const;
     // Until the first pass is done and planned; false if cancelled first.
     bool wait_for_first_pass(const std::atomic<bool>& cancel);
 

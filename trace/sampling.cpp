@@ -49,16 +49,12 @@ std::vector<std::uint8_t> adaptive_refinement(const Image& first,
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
             const std::size_t p = static_cast<std::size_t>(y) * width + x;
-            bool edge = sample_ids && mixed_ids(*sample_ids, x, y, n);
-            for (int dy = -1; dy <= 1 && !edge; ++dy) {
-                for (int dx = -1; dx <= 1 && !edge; ++dx) {
-                    const int qx = x + dx, qy = y + dy;
-                    if (qx < 0 || qy < 0 || qx >= width || qy >= height) continue;
-                    const std::size_t q = static_cast<std::size_t>(qy) * width + qx;
-                    edge = path_keys[q] != path_keys[p] ||
-                           contrasts(first.pixel(x, y), first.pixel(qx, qy), limit);
-                }
-            }
+            const bool edge = (sample_ids && mixed_ids(*sample_ids, x, y, n)) ||
+                              any_in_neighbourhood(width, height, x, y, [&](int qx, int qy) {
+                                  const std::size_t q = static_cast<std::size_t>(qy) * width + qx;
+                                  return path_keys[q] != path_keys[p] ||
+                                         contrasts(first.pixel(x, y), first.pixel(qx, qy), limit);
+                              });
             refine[p] = edge ? 1 : 0;
         }
     }
@@ -76,14 +72,11 @@ std::vector<std::uint8_t> adaptive_spread(const Image& first, const Image& curre
         for (int x = 0; x < width; ++x) {
             const std::size_t q = static_cast<std::size_t>(y) * width + x;
             if (!refined[q] || !contrasts(first.pixel(x, y), current.pixel(x, y), limit)) continue;
-            for (int dy = -1; dy <= 1; ++dy) {
-                for (int dx = -1; dx <= 1; ++dx) {
-                    const int px = x + dx, py = y + dy;
-                    if (px < 0 || py < 0 || px >= width || py >= height) continue;
-                    const std::size_t p = static_cast<std::size_t>(py) * width + px;
-                    if (!refined[p] && !next[p]) next[p] = 1, ++added;
-                }
-            }
+            any_in_neighbourhood(width, height, x, y, [&](int px, int py) {
+                const std::size_t p = static_cast<std::size_t>(py) * width + px;
+                if (!refined[p] && !next[p]) next[p] = 1, ++added;
+                return false; // every neighbour
+            });
         }
     }
     return next;
@@ -124,6 +117,14 @@ GridPixel shade_grid(const World& world, int x, int y, const Hit* hits) {
     pixel.mean = sum * inverse_count;
     pixel.omitted_weight = omitted * inverse_count;
     return pixel;
+}
+
+GridPixel trace_grid(const World& world, const PrimarySource& source, int x, int y,
+                     std::vector<Hit>& hits, PrimaryStats& stats) {
+    const auto n = static_cast<std::size_t>(world.settings().samples);
+    hits.resize(n * n);
+    grid_hits(world, source, x, y, hits.data(), stats);
+    return shade_grid(world, x, y, hits.data());
 }
 
 void supersample(const World& world, const PrimarySource& source,
@@ -195,16 +196,16 @@ void refine_adaptively(const World& world, const PrimarySource& source,
     });
     const Image first = result.image;
     supersample(world, source, &result.refined, result, stats, progress, times);
-    for (int round = 0; round < kMaxSpreadRounds; ++round) {
-        std::size_t added = 0;
-        const std::vector<std::uint8_t> next = timed(times.shading, [&] {
-            return adaptive_spread(first, result.image, result.refined, settings.aa_threshold,
-                                   added);
+    // The rounds' scans count as shading; supersample times its own passes.
+    const double timed_before = times.primary + times.shading;
+    const Stopwatch rounds;
+    spread_refinement(
+        first, result.image, result.refined, settings.aa_threshold,
+        [&](const std::vector<std::uint8_t>& next) {
+            supersample(world, source, &next, result, stats, {progress.threads, nullptr}, times);
+            return true;
         });
-        if (added == 0) break;
-        supersample(world, source, &next, result, stats, {progress.threads, nullptr}, times);
-        for (std::size_t i = 0; i < next.size(); ++i) result.refined[i] |= next[i];
-    }
+    times.shading += rounds.seconds() - (times.primary + times.shading - timed_before);
 }
 
 } // namespace GLINT_PRECISION

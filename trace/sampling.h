@@ -51,6 +51,29 @@ struct GridPixel {
 };
 GridPixel shade_grid(const World& world, int x, int y, const Hit* hits);
 
+// Both for one pixel: grid_hits into `hits` (scratch space, made N² long), then shade_grid.
+GridPixel trace_grid(const World& world, const PrimarySource& source, int x, int y,
+                     std::vector<Hit>& hits, PrimaryStats& stats);
+
+// Rule 4's rounds: while adaptive_spread finds pixels to add (at most kMaxSpreadRounds times),
+// refine(next) puts their grids' means into `current` (it returns false to stop: cancelled),
+// and they are marked in `refined`. Returns how many pixels it added.
+template <class Refine>
+std::size_t spread_refinement(const Image& first, const Image& current,
+                              std::vector<std::uint8_t>& refined, float threshold,
+                              const Refine& refine) {
+    std::size_t total = 0;
+    for (int round = 0; round < kMaxSpreadRounds; ++round) {
+        std::size_t added = 0;
+        const std::vector<std::uint8_t> next =
+            adaptive_spread(first, current, refined, threshold, added);
+        if (added == 0 || !refine(next)) break;
+        for (std::size_t i = 0; i < next.size(); ++i) refined[i] |= next[i];
+        total += added;
+    }
+    return total;
+}
+
 // Replaces, in `result`, each pixel with its N×N grid's mean (n = world.settings().samples;
 // every pixel, or only where `only` is 1), by grid_hits and shade_grid. Ray counts add to
 // result.rays; the pixel's cut-off weight becomes its samples' mean. The primary-hit and shading
