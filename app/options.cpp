@@ -19,10 +19,14 @@ void SceneOptions::add_to(CLI::App& cmd) {
     cmd.add_option("scene", scene, "Scene file: JSON, or NFF (.nff); default scenes/default.json");
     cmd.add_option("--size", size, "Image size WIDTHxHEIGHT, overriding the scene's camera");
     cmd.add_option("--accel", accel,
-                   "Acceleration structure: bvh, spheres, grid, kd or list; auto: list below 16 "
-                   "objects, else bvh")
+                   "Acceleration structure: bvh (4-wide, SIMD), bvh2 (binary), spheres, grid, kd "
+                   "or list; auto: list below 16 objects, else bvh")
         ->capture_default_str()
-        ->check(CLI::IsMember({"auto", "bvh", "spheres", "grid", "kd", "list"}));
+        ->check(CLI::IsMember([] {
+            std::vector<std::string> names = all_names<AccelKind>();
+            names.insert(names.begin(), "auto");
+            return names;
+        }()));
     max_depth_option =
         cmd.add_option("--max-depth", max_depth, "Maximum reflection depth (0 = none)")
             ->check(CLI::Range(0, kMaxDepth));

@@ -127,8 +127,7 @@ std::vector<std::pair<std::string, Setting>> sweep(const Scene& scene, int sampl
         s.min_reflectivity = cutoff;
         add("min_reflectivity", s);
     }
-    for (const AccelKind kind :
-         {AccelKind::list, AccelKind::bvh, AccelKind::spheres, AccelKind::grid, AccelKind::kd}) {
+    for (const AccelKind kind : all_values<AccelKind>()) {
         Setting s = ray;
         s.accel = kind;
         add("accel", s);

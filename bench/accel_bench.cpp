@@ -122,7 +122,7 @@ void Frame(benchmark::State& state) {
 }
 
 void accel_arguments(benchmark::internal::Benchmark* b, int max_list) {
-    for (int kind = 0; kind < 5; ++kind)
+    for (int kind = 0; kind < static_cast<int>(all_values<AccelKind>().size()); ++kind)
         for (int n : {100, 1000, 10000, 100000, 1000000})
             if (kind != 0 || n <= max_list) b->Args({kind, n});
 }
@@ -197,7 +197,7 @@ const World& terrain_world() {
 
 void MeshBuild(benchmark::State& state) {
     const std::vector<Bounds> triangles = triangle_bounds(terrain().mesh);
-    for (auto _ : state) benchmark::DoNotOptimize(Bvh(triangles));
+    for (auto _ : state) benchmark::DoNotOptimize(WideBvh(triangles));
     state.SetLabel(std::to_string(triangles.size()) + " triangles");
 }
 

@@ -277,12 +277,13 @@ TEST_P(AccelTest, HandlesEmptySingleAndDegenerateSets) {
     }
 }
 
+constexpr auto kStructures = all_values<AccelKind>();
 INSTANTIATE_TEST_SUITE_P(EveryStructure, AccelTest,
-                         ::testing::Values(AccelKind::bvh, AccelKind::spheres, AccelKind::grid,
-                                           AccelKind::kd),
+                         // Every structure but the list itself.
+                         ::testing::ValuesIn(kStructures.begin() + 1, kStructures.end()),
                          [](const auto& info) { return std::string(name_of(info.param)); });
 
-int depth_below(const Bvh& bvh, std::uint32_t node) {
+int depth_below(const BinaryBvh& bvh, std::uint32_t node) {
     const BvhNode& n = bvh.nodes()[node];
     if (n.count > 0) return 1;
     return 1 + std::max(depth_below(bvh, n.first), depth_below(bvh, n.first + 1));
@@ -300,7 +301,7 @@ TEST(Accel, BvhDepthStaysWithinTheTraversalStackWhereSahPeelsOneObjectALevel) {
             const float r = 0.3f * centre[axis];
             boxes.push_back({centre - r, centre + r});
         }
-    const Bvh bvh(boxes);
+    const BinaryBvh bvh(boxes);
     const int depth = depth_below(bvh, 0);
     EXPECT_LE(depth, kMaxBvhDepth);
     EXPECT_GT(depth, kSahDepth) << "no longer the adversarial case this test is about";

@@ -187,8 +187,7 @@ TEST(Glass, APixelsRayTreeStaysWithinItsBudget) {
 TEST(Glass, EveryStructureRendersTheSameBytes) {
     const Scene scene = testing::shipped("whitted", 96, 72);
     const Image list = render(World(scene, AccelKind::list)).image;
-    for (const AccelKind kind :
-         {AccelKind::bvh, AccelKind::spheres, AccelKind::grid, AccelKind::kd})
+    for (const AccelKind kind : all_values<AccelKind>())
         EXPECT_EQ(render(World(scene, kind)).image.rgb, list.rgb) << name_of(kind);
 }
 

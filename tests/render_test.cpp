@@ -70,8 +70,7 @@ TEST(Render, APixelTracedAloneIsThePixelOfTheFrame) {
 // for every structure, on every shipped scene (instances.json places OBJ meshes).
 TEST(Render, AWorldForAMovedCameraRendersWhatAFreshWorldDoes) {
     for (const char* name : testing::kShippedScenes) {
-        for (const AccelKind kind : {AccelKind::list, AccelKind::bvh, AccelKind::spheres,
-                                     AccelKind::grid, AccelKind::kd}) {
+        for (const AccelKind kind : all_values<AccelKind>()) {
             Scene scene = testing::shipped(name, 64, 48);
             const World before(scene, kind);
             scene.camera.eye = scene.camera.eye * 1.3 + DVec3(0.7, 0.4, -0.2);

@@ -30,6 +30,13 @@ template <class Enum> constexpr std::optional<Enum> from_name(std::string_view n
     return std::nullopt;
 }
 
+// Every value, in order: loops over a closed set (tests, sweeps) that must not miss a new member.
+template <class Enum> constexpr auto all_values() {
+    std::array<Enum, EnumNames<Enum>::names.size()> values{};
+    for (std::size_t i = 0; i < values.size(); ++i) values[i] = static_cast<Enum>(i);
+    return values;
+}
+
 // Every name, in order: what a command-line option accepts.
 template <class Enum> std::vector<std::string> all_names() {
     const auto& names = EnumNames<Enum>::names;

@@ -9,7 +9,7 @@ Accelerator::Accelerator(AccelKind kind, std::vector<Bounds> items) {
         structure_.emplace<ItemList>(ItemList{std::move(items)});
         break;
     case AccelKind::bvh:
-        structure_.emplace<Bvh>(items);
+        structure_.emplace<WideBvh>(items);
         break;
     case AccelKind::spheres:
         structure_.emplace<SphereTree>(items);
@@ -20,13 +20,21 @@ Accelerator::Accelerator(AccelKind kind, std::vector<Bounds> items) {
     case AccelKind::kd:
         structure_.emplace<KdTree>(items);
         break;
+    case AccelKind::bvh2:
+        structure_.emplace<BinaryBvh>(items);
+        break;
     }
 }
 
 Accelerator Accelerator::refitted(std::vector<Bounds> items) const {
-    if (const Bvh* bvh = std::get_if<Bvh>(&structure_)) {
+    if (const WideBvh* bvh = std::get_if<WideBvh>(&structure_)) {
         Accelerator moved;
-        moved.structure_.emplace<Bvh>(bvh->refitted(items));
+        moved.structure_.emplace<WideBvh>(bvh->refitted(items));
+        return moved;
+    }
+    if (const BinaryBvh* bvh = std::get_if<BinaryBvh>(&structure_)) {
+        Accelerator moved;
+        moved.structure_.emplace<BinaryBvh>(bvh->refitted(items));
         return moved;
     }
     return Accelerator(kind(), std::move(items));

@@ -7,10 +7,11 @@
 #pragma once
 
 #include "trace/accel/accel_kind.h"
-#include "trace/accel/bvh.h"
+#include "trace/accel/binary_bvh.h"
 #include "trace/accel/grid.h"
 #include "trace/accel/kd_tree.h"
 #include "trace/accel/sphere_tree.h"
+#include "trace/accel/wide_bvh.h"
 
 #include <optional>
 #include <string_view>
@@ -44,11 +45,13 @@ class Accelerator {
     // Builds the structure over the items' world-space bounds.
     Accelerator(AccelKind kind, std::vector<Bounds> items);
 
-    // The same kind over the same items with new bounds (the camera moved): a BVH keeps its
-    // tree and refits its boxes, a list takes the new boxes, the others are built again.
+    // The same kind over the same items with new bounds (the camera moved): a BVH (either) keeps
+    // its tree and refits its boxes, a list takes the new boxes, the others are built again.
     Accelerator refitted(std::vector<Bounds> items) const;
 
     AccelKind kind() const { return static_cast<AccelKind>(structure_.index()); }
+    // The four-wide BVH, which alone traverses packets of rays; null for the other kinds.
+    const WideBvh* wide_bvh() const { return std::get_if<WideBvh>(&structure_); }
     std::size_t memory_bytes() const;
     std::size_t node_count() const;
 
@@ -65,11 +68,14 @@ class Accelerator {
             return std::get<3>(structure_).traverse(ray, t_max, counters, visit);
         case 4:
             return std::get<4>(structure_).traverse(ray, t_max, counters, visit);
+        case 5:
+            return std::get<5>(structure_).traverse(ray, t_max, counters, visit);
         }
     }
 
   private:
-    std::variant<ItemList, Bvh, SphereTree, UniformGrid, KdTree> structure_;
+    // In AccelKind's order.
+    std::variant<ItemList, WideBvh, SphereTree, UniformGrid, KdTree, BinaryBvh> structure_;
 };
 
 } // namespace GLINT_PRECISION

@@ -8,10 +8,12 @@
 
 namespace glint {
 
-enum class AccelKind : std::uint8_t { list, bvh, spheres, grid, kd };
+// bvh is the four-wide SIMD hierarchy (wide_bvh.h); bvh2 the binary one it is collapsed from
+// (binary_bvh.h), kept by name as the teaching baseline.
+enum class AccelKind : std::uint8_t { list, bvh, spheres, grid, kd, bvh2 };
 
 template <> struct EnumNames<AccelKind> {
-    static constexpr auto names = name_table("list", "bvh", "spheres", "grid", "kd");
+    static constexpr auto names = name_table("list", "bvh", "spheres", "grid", "kd", "bvh2");
 };
 
 } // namespace glint

@@ -3,7 +3,7 @@
 // the lecture says, a research problem); each node holds the sphere enclosing its children.
 #pragma once
 
-#include "trace/accel/bvh.h"
+#include "trace/accel/binary_bvh.h"
 
 #include <cmath>
 
@@ -80,7 +80,7 @@ class SphereTree {
     }
 
   private:
-    Bvh topology_;
+    BinaryBvh topology_;
     std::vector<BoundingSphere> spheres_; // per node of topology_
 };
 

@@ -1,7 +1,7 @@
 // Triangles and indexed triangle meshes (counter-clockwise front), in object space.
 #pragma once
 
-#include "trace/accel/bvh.h"
+#include "trace/accel/wide_bvh.h"
 #include "trace/bounds.h"
 #include "trace/shapes/shape.h"
 
@@ -18,9 +18,11 @@ struct Mesh {
     std::vector<glm::uvec3> triangles; // indices into vertices
     std::vector<Vec3> normals;         // per vertex, or empty (flat shading)
     Bounds bounds;                     // of the vertices, object space
-    Bvh bvh;                           // over the triangles, object space
+    WideBvh bvh;                       // over the triangles, object space
     // The three corners of each triangle side by side: one load per triangle instead of an
-    // index and three scattered vertices.
+    // index and three scattered vertices. In the BVH's slot order where there is one (slot s
+    // holds triangle bvh.items()[s]), so that a leaf's triangles are contiguous; else in
+    // triangle order.
     std::vector<std::array<Vec3, 3>> corners;
 };
 
@@ -84,9 +86,9 @@ inline TriangleHit intersect_triangle(Vec3 p0, Vec3 p1, Vec3 p2, const Ray& ray)
     return intersect_triangle(p0, p1, p2, WatertightRay(ray));
 }
 
-// Builds what intersect_mesh reads: the vertices and their bounds, every triangle's corners,
-// and above 8 triangles a BVH over them (the bottom level of a two-level structure: to the top
-// level a mesh is one object).
+// Builds what intersect_mesh reads: the vertices and their bounds, above 8 triangles a BVH over
+// them (the bottom level of a two-level structure: to the top level a mesh is one object), and
+// every triangle's corners in the order the BVH reads them.
 inline Mesh prepare_mesh(const TriangleMesh& given) {
     Mesh mesh;
     mesh.triangles = given.triangles;
@@ -96,35 +98,44 @@ inline Mesh prepare_mesh(const TriangleMesh& given) {
         mesh.bounds.extend(mesh.vertices.back());
     }
     for (const glm::vec3& n : given.normals) mesh.normals.push_back(Vec3(n));
+    if (mesh.triangles.size() > 8) mesh.bvh = WideBvh(triangle_bounds(mesh));
     mesh.corners.reserve(mesh.triangles.size());
-    for (const glm::uvec3& t : mesh.triangles)
+    for (std::uint32_t slot = 0; slot < mesh.triangles.size(); ++slot) {
+        const glm::uvec3 t =
+            mesh.triangles[mesh.bvh.nodes().empty() ? slot : mesh.bvh.items()[slot]];
         mesh.corners.push_back({mesh.vertices[t.x], mesh.vertices[t.y], mesh.vertices[t.z]});
-    if (mesh.triangles.size() > 8) mesh.bvh = Bvh(triangle_bounds(mesh));
+    }
     return mesh;
 }
 
 // The nearest triangle below t_max: through the mesh's own BVH (the bottom level of a two-level
 // structure), or, for meshes too small to have one, all of them. Boxes are pruned against the
-// limit loosely (loose(), trace/math.h), triangles strictly.
+// limit loosely (loose(), trace/math.h), triangles strictly. On equal t the lower triangle index
+// wins, as it does when all are tested in order: the answer does not depend on the order a
+// tree visits its leaves in (tests/accel_test.cpp, MeshHitsAreTheSameWhateverTheVisitingOrder).
 template <class Counters>
 ShapeHit intersect_mesh(const Mesh& mesh, const Ray& ray, Real t_max, Counters& counters) {
     ShapeHit best;
     const WatertightRay prepared(ray); // once per ray, not per triangle
-    Real limit = t_max;
-    const auto test = [&](std::uint32_t i, Real& box_limit) {
-        const std::array<Vec3, 3>& c = mesh.corners[i];
+    const auto test = [&](std::uint32_t slot, std::uint32_t triangle) {
+        const std::array<Vec3, 3>& c = mesh.corners[slot];
         const TriangleHit h = intersect_triangle(c[0], c[1], c[2], prepared);
-        if (h.t > 0 && h.t < limit && h.t < best.t) best = {h.t, i, h.u, h.v}, limit = h.t;
-        box_limit = loose(limit);
-        return false;
+        if (h.t > 0 && h.t < t_max && (h.t < best.t || (h.t == best.t && triangle < best.part)))
+            best = {h.t, triangle, h.u, h.v};
     };
     Real box_limit = loose(t_max);
     if (!mesh.bvh.nodes().empty()) {
-        mesh.bvh.traverse(ray, box_limit, counters, test);
+        const std::vector<std::uint32_t>& triangles = mesh.bvh.items();
+        mesh.bvh.traverse_leaves(ray, box_limit, counters,
+                                 [&](std::uint32_t begin, std::uint32_t end, Real& limit) {
+                                     for (std::uint32_t slot = begin; slot < end; ++slot)
+                                         counters.primitive(), test(slot, triangles[slot]);
+                                     limit = loose(std::min(best.t, t_max));
+                                     return false;
+                                 });
     } else {
         if (!SlabRay(ray).hits(mesh.bounds, box_limit)) return {};
-        for (std::uint32_t i = 0; i < mesh.triangles.size(); ++i)
-            counters.primitive(), test(i, box_limit);
+        for (std::uint32_t i = 0; i < mesh.triangles.size(); ++i) counters.primitive(), test(i, i);
     }
     return best;
 }

@@ -26,14 +26,14 @@ inline constexpr int kMaxBvhDepth = 128;
 inline constexpr int kSahDepth = 64;
 static_assert(kSahDepth + 32 + 1 <= kMaxBvhDepth);
 
-class Bvh {
+class BinaryBvh {
   public:
-    Bvh() = default;
-    explicit Bvh(std::span<const Bounds> items);
+    BinaryBvh() = default;
+    explicit BinaryBvh(std::span<const Bounds> items);
 
     // This tree over new boxes of the same items: each node's box the union of its items' or
     // children's. Conservative as a fresh build is; only the SAH's choice of splits may be worse.
-    Bvh refitted(std::span<const Bounds> items) const;
+    BinaryBvh refitted(std::span<const Bounds> items) const;
 
     const std::vector<BvhNode>& nodes() const { return nodes_; }
     const std::vector<std::uint32_t>& items() const { return items_; }

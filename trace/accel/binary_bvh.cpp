@@ -1,4 +1,4 @@
-#include "trace/accel/bvh.h"
+#include "trace/accel/binary_bvh.h"
 
 #include <tbb/parallel_invoke.h>
 
@@ -146,13 +146,13 @@ Bounds refit(std::vector<BvhNode>& nodes, const std::vector<std::uint32_t>& orde
 
 } // namespace
 
-Bvh Bvh::refitted(std::span<const Bounds> items) const {
-    Bvh moved = *this;
+BinaryBvh BinaryBvh::refitted(std::span<const Bounds> items) const {
+    BinaryBvh moved = *this;
     if (!moved.nodes_.empty()) refit(moved.nodes_, moved.items_, items, 0);
     return moved;
 }
 
-Bvh::Bvh(std::span<const Bounds> item_bounds) {
+BinaryBvh::BinaryBvh(std::span<const Bounds> item_bounds) {
     if (item_bounds.empty()) return;
     items_.resize(item_bounds.size());
     for (std::uint32_t i = 0; i < items_.size(); ++i) items_[i] = i;

@@ -1,0 +1,97 @@
+#include "trace/accel/wide_bvh.h"
+
+#include <algorithm>
+
+namespace glint {
+inline namespace GLINT_PRECISION {
+namespace {
+
+void set_lane(WideBvhNode& node, int lane, const Bounds& box, std::uint32_t child,
+              std::uint32_t count) {
+    for (int a = 0; a < 3; ++a) node.box[a][0][lane] = box.lo[a], node.box[a][1][lane] = box.hi[a];
+    node.child[lane] = child;
+    node.count[lane] = static_cast<std::uint8_t>(count);
+}
+
+WideBvhNode empty_node() {
+    WideBvhNode node{};
+    for (int lane = 0; lane < kBvhWidth; ++lane) set_lane(node, lane, Bounds{}, kEmptyChild, 0);
+    return node;
+}
+
+// Collapses the binary subtree under `binary` into wide node `index` and its descendants: the
+// node's children are the binary node's two, with the largest inner child replaced by its own
+// two until there are four or only leaves (the usual collapse, e.g. Wald et al. 2008, "Getting
+// rid of packets"). Nodes are laid out depth first, so a subtree is contiguous.
+void collapse(const BinaryBvh& tree, std::uint32_t binary, std::uint32_t index,
+              std::vector<WideBvhNode>& nodes) {
+    const std::vector<BvhNode>& b = tree.nodes();
+    std::uint32_t children[kBvhWidth] = {b[binary].first, b[binary].first + 1};
+    int count = 2;
+    while (count < kBvhWidth) {
+        int widest = -1;
+        for (int k = 0; k < count; ++k)
+            if (b[children[k]].count == 0 &&
+                (widest < 0 || b[children[k]].bounds.area() > b[children[widest]].bounds.area()))
+                widest = k;
+        if (widest < 0) break;
+        const std::uint32_t opened = children[widest];
+        children[widest] = b[opened].first;
+        children[count++] = b[opened].first + 1;
+    }
+    for (int k = 0; k < count; ++k) {
+        const BvhNode& child = b[children[k]];
+        if (child.count > 0) {
+            set_lane(nodes[index], k, child.bounds, child.first, child.count);
+        } else {
+            const auto below = static_cast<std::uint32_t>(nodes.size());
+            nodes.push_back(empty_node());
+            set_lane(nodes[index], k, child.bounds, below, 0);
+            collapse(tree, children[k], below, nodes);
+        }
+    }
+}
+
+// The box of every lane of node `index` over `items`, refitted below it first; their union.
+Bounds refit(std::vector<WideBvhNode>& nodes, const std::vector<std::uint32_t>& order,
+             std::span<const Bounds> items, std::uint32_t index) {
+    Bounds all;
+    for (int lane = 0; lane < kBvhWidth; ++lane) {
+        WideBvhNode& node = nodes[index];
+        const std::uint32_t child = node.child[lane], count = node.count[lane];
+        if (child == kEmptyChild) continue;
+        Bounds box;
+        if (count > 0) {
+            for (std::uint32_t slot = child; slot < child + count; ++slot)
+                box.extend(items[order[slot]]);
+        } else {
+            box = refit(nodes, order, items, child);
+        }
+        set_lane(nodes[index], lane, box, child, count);
+        all.extend(box);
+    }
+    return all;
+}
+
+} // namespace
+
+WideBvh::WideBvh(std::span<const Bounds> item_bounds) {
+    if (item_bounds.empty()) return;
+    const BinaryBvh tree(item_bounds);
+    items_ = tree.items();
+    nodes_.push_back(empty_node());
+    const BvhNode& root = tree.nodes()[0];
+    if (root.count > 0) // few enough items for one leaf: a root with one child
+        set_lane(nodes_[0], 0, root.bounds, root.first, root.count);
+    else
+        collapse(tree, 0, 0, nodes_);
+}
+
+WideBvh WideBvh::refitted(std::span<const Bounds> items) const {
+    WideBvh moved = *this;
+    if (!moved.nodes_.empty()) refit(moved.nodes_, moved.items_, items, 0);
+    return moved;
+}
+
+} // namespace GLINT_PRECISION
+} // namespace glint
