@@ -108,6 +108,61 @@ TEST_P(AccelTest, AgreesExactlyWithTheListOnAMillionRandomRays) {
     EXPECT_GT(hits, rays / 10) << "too few hits to mean much";
 }
 
+// Packets (World::intersect_packet, occluded_packet): every ray of a packet gets exactly the
+// list's answer, for coherent packets (a 4×4 block of camera rays, shadow rays from scattered
+// points towards one light) and incoherent ones (random rays), partly filled ones included.
+TEST_P(AccelTest, PacketsAgreeExactlyWithTheListRayByRay) {
+    const AccelKind kind = GetParam();
+    std::mt19937 rng(99);
+    std::uniform_real_distribution<float> u(-1, 1);
+    std::uint64_t rays = 0;
+    for (unsigned seed = 0; seed < 60; ++seed) {
+        Scene scene = random_scene(seed, 10 + static_cast<int>(seed % 7) * 15);
+        scene.camera.eye = {0, 0, 0};
+        scene.camera.look_at = {0, 0, -1};
+        const World list(scene, AccelKind::list);
+        const World other(scene, kind);
+        for (int packet = 0; packet < 500; ++packet) {
+            const std::size_t count = 1 + rng() % kMaxPacket;
+            Ray batch[kMaxPacket];
+            std::uint32_t skips[kMaxPacket];
+            const Vec3 light(7 * u(rng), 7 * u(rng), 7 * u(rng));
+            const Vec3 eye(7 * u(rng), 7 * u(rng), 7 * u(rng));
+            for (std::size_t r = 0; r < count; ++r) {
+                switch (packet % 3) {
+                case 0: // camera rays through a small block
+                    batch[r] = {eye, Vec3(-eye.x + 0.05f * static_cast<float>(r % 4),
+                                          -eye.y + 0.05f * static_cast<float>(r / 4), -eye.z)};
+                    break;
+                case 1: // towards one light from scattered points, as a tile's shadow rays
+                    batch[r].origin = Vec3(5 * u(rng), 5 * u(rng), 5 * u(rng));
+                    batch[r].direction = light - batch[r].origin;
+                    break;
+                default:
+                    batch[r] = random_ray(rng);
+                }
+                if (batch[r].direction == Vec3(0.0f)) batch[r].direction = {0, 0, 1};
+                skips[r] = rng() % 4 == 0 ? static_cast<std::uint32_t>(rng() % 20) : kNoObject;
+            }
+            Hit hits[kMaxPacket];
+            bool blocked[kMaxPacket];
+            const float t_max = packet % 3 == 1 ? 1.0f : 4 + 10 * (u(rng) + 1);
+            other.intersect_packet({batch, count}, hits);
+            other.occluded_packet({batch, count}, t_max, skips, blocked);
+            for (std::size_t r = 0; r < count; ++r, ++rays) {
+                const Hit expected = list.intersect(batch[r]);
+                ASSERT_EQ(hits[r].object, expected.object)
+                    << "scene " << seed << " packet " << packet;
+                ASSERT_EQ(hits[r].t, expected.t) << "scene " << seed << " packet " << packet;
+                ASSERT_EQ(hits[r].primitive, expected.primitive) << "scene " << seed;
+                ASSERT_EQ(blocked[r], list.occluded(batch[r], t_max, skips[r]))
+                    << "scene " << seed << " packet " << packet << " ray " << r;
+            }
+        }
+    }
+    EXPECT_GT(rays, 200'000u);
+}
+
 TEST_P(AccelTest, RendersAreByteIdenticalToTheList) {
     Scene scene = load_scene(GLINT_SOURCE_DIR "/scenes/default.json");
     scene.camera.width = 120, scene.camera.height = 90;

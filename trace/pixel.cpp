@@ -3,7 +3,8 @@
 namespace glint {
 inline namespace GLINT_PRECISION {
 
-PixelSample shade_pixel(const World& world, const Ray& ray, const Hit& primary) {
+PixelSample shade_pixel(const World& world, const Ray& ray, const Hit& primary,
+                        const PreparedHit& prepared) {
     PixelSample sample;
     sample.hit = primary;
     ++sample.rays.primary;
@@ -12,10 +13,41 @@ PixelSample shade_pixel(const World& world, const Ray& ray, const Hit& primary) 
         sample.colour = world.background();
         return sample;
     }
-    const SurfacePoint surface = world.surface(ray, primary);
+    const SurfacePoint surface = prepared.surface ? *prepared.surface : world.surface(ray, primary);
     sample.normal = surface.shading;
-    sample.colour = shade(world, ray, primary, surface, 0, 1, sample);
+    sample.colour = shade(world, ray, primary, surface, 0, 1, sample, prepared.light);
     return sample;
+}
+
+TileLighting::TileLighting(const World& world, std::span<const Ray> rays, std::span<const Hit> hits)
+    : surfaces_(hits.size()), lights_(world.lights().size()),
+      known_(!world.geometry()->transmissive && lights_ > 0) {
+    for (std::size_t k = 0; k < hits.size(); ++k)
+        if (hits[k].found()) surfaces_[k] = world.surface(rays[k], hits[k]);
+    if (!known_) return;
+    light_.assign(hits.size() * lights_, 0);
+    for (std::size_t j = 0; j < lights_; ++j) {
+        const Light& light = world.lights()[j];
+        Ray shadow[kMaxPacket];
+        std::uint32_t skip[kMaxPacket];
+        std::size_t pixel[kMaxPacket];
+        bool blocked[kMaxPacket];
+        std::size_t count = 0;
+        const auto cast = [&] {
+            world.occluded_packet({shadow, count}, 1.0_r, skip, blocked);
+            for (std::size_t r = 0; r < count; ++r)
+                light_[pixel[r] * lights_ + j] = blocked[r] ? 0.0_r : 1.0_r;
+            count = 0;
+        };
+        for (std::size_t k = 0; k < hits.size(); ++k) {
+            if (!hits[k].found() || !light_direction(surfaces_[k], light).in_front()) continue;
+            shadow[count] = shadow_ray(surfaces_[k], light.position);
+            skip[count] = surfaces_[k].skip;
+            pixel[count++] = k;
+            if (count == kMaxPacket) cast();
+        }
+        if (count > 0) cast();
+    }
 }
 
 } // namespace GLINT_PRECISION

@@ -18,8 +18,34 @@ struct PixelSample : RayTree {
     Vec3 normal{0}; // unit shading normal at the primary hit; zero where there is none
 };
 
-// Shades a camera ray from its primary hit.
-PixelSample shade_pixel(const World& world, const Ray& ray, const Hit& primary);
+// What a tile's packets found at a primary hit before it is shaded (TileLighting): its surface,
+// and per light the shadow ray's verdict.
+struct PreparedHit {
+    const SurfacePoint* surface = nullptr;
+    const Real* light = nullptr; // null: shade casts its shadow rays itself
+};
+
+// Shades a camera ray from its primary hit, from what `prepared` holds of it where given.
+PixelSample shade_pixel(const World& world, const Ray& ray, const Hit& primary,
+                        const PreparedHit& prepared = {});
+
+// The primary hits of a tile (or any group of pixels whose neighbours are close), prepared for
+// shading: every surface, and in a scene without transmission every light's shadow verdict,
+// cast in packets of kMaxPacket rays towards that light (World::occluded_packet), taken in the
+// order given. The verdicts are the ones shade() would find ray by ray, bit for bit.
+class TileLighting {
+  public:
+    TileLighting(const World& world, std::span<const Ray> rays, std::span<const Hit> hits);
+    PreparedHit at(std::size_t k) const {
+        return {&surfaces_[k], known_ ? &light_[k * lights_] : nullptr};
+    }
+
+  private:
+    std::vector<SurfacePoint> surfaces_;
+    std::vector<Real> light_; // pixel k, light j at k·lights + j
+    std::size_t lights_ = 0;
+    bool known_ = false;
+};
 
 // The whole path of pixel (x, y): its camera ray, made once, its primary hit from `source`,
 // then shading.

@@ -70,8 +70,26 @@ std::vector<Hit> primary_hits(const World& world, const PrimarySource& source, P
     const int width = camera.width();
     std::vector<Hit> hits(static_cast<std::size_t>(width) * camera.height());
     std::mutex stats_mutex;
+    static_assert(kBlockSize * kBlockSize == kMaxPacket);
     for_each_tile(width, camera.height(), progress, [&](int x0, int y0, int x1, int y1) {
         PrimaryStats local;
+        if (!source.ids) { // ray mode: the tile's camera rays in packets of a block each
+            for (int by = y0; by < y1; by += kBlockSize) {
+                for (int bx = x0; bx < x1; bx += kBlockSize) {
+                    Ray rays[kMaxPacket];
+                    Hit block[kMaxPacket];
+                    std::size_t pixel[kMaxPacket], count = 0;
+                    for_each_in_blocks(bx, by, std::min(bx + kBlockSize, x1),
+                                       std::min(by + kBlockSize, y1), [&](int x, int y) {
+                                           pixel[count] = static_cast<std::size_t>(y) * width + x;
+                                           rays[count++] = camera.ray(x, y);
+                                       });
+                    world.intersect_packet({rays, count}, block);
+                    for (std::size_t r = 0; r < count; ++r) hits[pixel[r]] = block[r];
+                }
+            }
+            return;
+        }
         for (int y = y0; y < y1; ++y)
             for (int x = x0; x < x1; ++x)
                 hits[static_cast<std::size_t>(y) * width + x] =

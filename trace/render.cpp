@@ -18,16 +18,25 @@ RenderResult shade_image(const World& world, const std::vector<Hit>& primary,
     if (path_keys) path_keys->assign(primary.size(), 0);
     std::mutex counts_mutex;
     for_each_tile(width, camera.height(), progress, [&](int x0, int y0, int x1, int y1) {
+        // The tile's pixels in blocks, so that its shadow rays go in packets of neighbours.
+        std::vector<std::size_t> pixels;
+        std::vector<Ray> rays;
+        std::vector<Hit> hits;
+        for_each_in_blocks(x0, y0, x1, y1, [&](int x, int y) {
+            pixels.push_back(static_cast<std::size_t>(y) * width + x);
+            rays.push_back(camera.ray(x, y));
+            hits.push_back(primary[pixels.back()]);
+        });
+        const TileLighting lighting(world, rays, hits);
         RayCounts counts;
-        for (int y = y0; y < y1; ++y) {
-            for (int x = x0; x < x1; ++x) {
-                const std::size_t i = static_cast<std::size_t>(y) * width + x;
-                const PixelSample sample = shade_pixel(world, camera.ray(x, y), primary[i]);
-                result.omitted_weight[i] = static_cast<float>(sample.omitted_weight);
-                if (path_keys) (*path_keys)[i] = sample.path_key;
-                store_colour(sample.colour, result.image.pixel(x, y));
-                counts += sample.rays;
-            }
+        for (std::size_t k = 0; k < pixels.size(); ++k) {
+            const std::size_t i = pixels[k];
+            const PixelSample sample = shade_pixel(world, rays[k], hits[k], lighting.at(k));
+            result.omitted_weight[i] = static_cast<float>(sample.omitted_weight);
+            if (path_keys) (*path_keys)[i] = sample.path_key;
+            store_colour(sample.colour, result.image.pixel(static_cast<int>(i % width),
+                                                           static_cast<int>(i / width)));
+            counts += sample.rays;
         }
         const std::lock_guard lock(counts_mutex); // integer sums: order does not matter
         result.rays += counts;

@@ -39,13 +39,14 @@ bool odd_cell(Real size, Vec3 q, bool in_plane) {
 // for opaque objects first, so that only segments that meet glass and nothing opaque are
 // followed crossing by crossing.
 Real light_through(const World& world, const SurfacePoint& surface, Vec3 light, RayCounts& counts) {
-    Vec3 from = surface.spawn();
+    const Ray shadow = shadow_ray(surface, light);
     ++counts.shadow;
     if (!world.geometry()->transmissive)
-        return world.occluded({from, light - from}, 1.0_r, surface.skip) ? 0.0_r : 1.0_r;
+        return world.occluded(shadow, 1.0_r, surface.skip) ? 0.0_r : 1.0_r;
     bool glass = false;
-    if (world.opaque_between({from, light - from}, 1.0_r, surface.skip, glass)) return 0;
+    if (world.opaque_between(shadow, 1.0_r, surface.skip, glass)) return 0;
     if (!glass) return 1;
+    Vec3 from = shadow.origin;
     std::uint32_t skip = surface.skip;
     Real through = 1;
     for (int crossing = 0; crossing < kMaxCrossings; ++crossing) {
@@ -64,10 +65,15 @@ Real light_through(const World& world, const SurfacePoint& surface, Vec3 light, 
 
 } // namespace
 
+LightDirection light_direction(const SurfacePoint& surface, const Light& light) {
+    const Vec3 l = glm::normalize(light.position - surface.position);
+    return {l, glm::dot(surface.shading, l)};
+}
+
 // The lecture's sum, with §11's checker, shadows through glass and transmitted rays (62 lines:
 // the local terms and the two kinds of secondary ray share the weight rule and its counters).
 Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoint& surface,
-           int depth, Real weight, RayTree& tree) {
+           int depth, Real weight, RayTree& tree, const Real* known_light) {
     RayCounts& counts = tree.rays;
     const Phong& m = world.material(hit.object);
     const Vec3 n = surface.shading;
@@ -80,12 +86,13 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoin
     tree.note((static_cast<std::uint64_t>(hit.object) + 1) * 2 + (odd ? 1 : 0));
 
     Vec3 colour = ambient * world.ambient();
-    for (const Light& light : world.lights()) {
-        const Vec3 l = glm::normalize(light.position - surface.position);
-        const Real n_dot_l = glm::dot(n, l);
+    for (std::size_t j = 0; j < world.lights().size(); ++j) {
+        const Light& light = world.lights()[j];
+        const auto [l, n_dot_l] = light_direction(surface, light);
         if (n_dot_l <= 0) continue; // the light is behind the surface
         const std::uint64_t shadow_rays = counts.shadow;
-        const Real through = light_through(world, surface, light.position, counts);
+        const Real through = known_light ? (++counts.shadow, known_light[j])
+                                         : light_through(world, surface, light.position, counts);
         // The verdict: blocked, or how many segments (1 + glass crossings) reached the light.
         tree.note(through == 0 ? ~std::uint64_t{0} : counts.shadow - shadow_rays);
         if (through == 0) continue;

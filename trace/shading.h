@@ -34,6 +34,22 @@ struct RayTree {
     }
 };
 
+// Whether `light` is in front of the surface (n·l > 0, n the shading normal), with l and n·l:
+// shade() casts a shadow ray only then, and a tile's shadow packets (trace/pixel.h) ask the same.
+struct LightDirection {
+    Vec3 l;
+    Real n_dot_l;
+    bool in_front() const { return n_dot_l > 0; }
+};
+LightDirection light_direction(const SurfacePoint& surface, const Light& light);
+
+// The shadow ray towards a light at `position` from a surface: spawned off the surface, ending at
+// the light at t = 1, skipping what the surface may skip.
+inline Ray shadow_ray(const SurfacePoint& surface, Vec3 position) {
+    const Vec3 from = surface.spawn();
+    return {from, position - from};
+}
+
 // Colour seen along `ray` (unclamped), which has already produced `hit` (maybe none).
 // `depth` is the number of reflections and transmissions before this hit (0 for the primary
 // hit) and `weight` the product of the reflectivities and transmissions along the path so far.
@@ -42,8 +58,11 @@ struct RayTree {
 Vec3 shade(const World& world, const Ray& ray, const Hit& hit, int depth, Real weight,
            RayTree& tree);
 // The same at a found hit whose surface point (World::surface) the caller has already rebuilt.
+// `known_light`, when given, holds per light the factor light_through would find (cast by the
+// caller in packets, for the lights in front of the surface); shade then counts those shadow
+// rays without casting them.
 Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoint& surface,
-           int depth, Real weight, RayTree& tree);
+           int depth, Real weight, RayTree& tree, const Real* known_light = nullptr);
 
 } // namespace GLINT_PRECISION
 } // namespace glint

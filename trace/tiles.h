@@ -34,6 +34,18 @@ bool any_in_neighbourhood(int width, int height, int x, int y, const Pred& pred)
     return false;
 }
 
+// A packet of camera rays (or of their shadow rays): a block of kBlockSize² neighbouring pixels.
+inline constexpr int kBlockSize = 4;
+
+// Calls body(x, y) for the pixels of [x0, x1)×[y0, y1) block by block (kBlockSize² pixels, row by
+// row within a block): the order a tile's packets take its pixels in.
+template <class Body> void for_each_in_blocks(int x0, int y0, int x1, int y1, const Body& body) {
+    for (int by = y0; by < y1; by += kBlockSize)
+        for (int bx = x0; bx < x1; bx += kBlockSize)
+            for (int y = by; y < std::min(by + kBlockSize, y1); ++y)
+                for (int x = bx; x < std::min(bx + kBlockSize, x1); ++x) body(x, y);
+}
+
 // Calls body(x0, y0, x1, y1) for each tile of a width×height image, in parallel.
 template <class Body>
 void for_each_tile(int width, int height, const TileProgress& progress, const Body& body) {

@@ -2,6 +2,7 @@
 
 #include "trace/stopwatch.h"
 
+#include <cassert>
 #include <cmath>
 
 namespace glint {
@@ -113,29 +114,74 @@ ShapeHit World::intersect_shape(const Object& object, const Ray& world_ray, Real
 // so every structure returns exactly the list's hit. Each object is therefore tested up to the
 // next float above the best t, and an equal t replaces the best only from a lower index.
 template <class Counters>
-Hit World::closest(const Ray& ray, Real t_max, std::uint32_t skip, Counters& counters) const {
-    Hit best;
-    best.t = t_max;
-    const LazySlab slab(ray);
+void World::consider(Closest& query, std::uint32_t object, Counters& counters) const {
+    if (object == query.skip) return;
+    Hit& best = query.best;
+    const Real limit = best.found() ? std::nextafter(best.t, kInfinity) : best.t;
     const bool boxes_tested = accel_.kind() == AccelKind::list; // each item's box, first
-    const auto consider = [&](std::uint32_t object) {
-        if (object == skip) return;
-        const Real limit = best.found() ? std::nextafter(best.t, kInfinity) : best.t;
-        const ShapeHit h =
-            intersect_object(objects_[object], ray, slab, limit, boxes_tested, counters);
-        if (h.t < best.t || (h.t == best.t && best.found() && object < best.object))
-            best = {h.t, object, h.part, h.u, h.v};
-    };
-    for (const std::uint32_t object : unbounded_) counters.primitive(), consider(object);
-    Real limit = loose(best.t);
+    const ShapeHit h =
+        intersect_object(objects_[object], *query.ray, query.slab, limit, boxes_tested, counters);
+    if (h.t < best.t || (h.t == best.t && best.found() && object < best.object))
+        best = {h.t, object, h.part, h.u, h.v};
+}
+
+// Let the structure prune only beyond the best hit, loosely: ties at best.t must still be seen.
+template <class Counters> Real World::begin_closest(Closest& query, Counters& counters) const {
+    for (const std::uint32_t object : unbounded_)
+        counters.primitive(), consider(query, object, counters);
+    return loose(query.best.t);
+}
+
+template <class Counters>
+Hit World::closest(const Ray& ray, Real t_max, std::uint32_t skip, Counters& counters) const {
+    Closest query{&ray, LazySlab(ray), skip, {}};
+    query.best.t = t_max;
+    Real limit = begin_closest(query, counters);
     accel_.traverse(ray, limit, counters, [&](std::uint32_t item, Real& t_limit) {
-        consider(bounded_[item]);
-        // Let the structure prune only beyond the best hit, loosely: ties at best.t must still
-        // be seen.
-        t_limit = loose(best.t);
+        consider(query, bounded_[item], counters);
+        t_limit = loose(query.best.t);
         return false;
     });
-    return best;
+    return query.best;
+}
+
+template <class Counters>
+void World::closest_packet(std::span<const Ray> rays, Hit* hits, Counters& counters) const {
+    assert(rays.size() <= kMaxPacket);
+    const WideBvh* bvh = accel_.wide_bvh();
+    if (!bvh) {
+        for (std::size_t r = 0; r < rays.size(); ++r)
+            hits[r] = closest(rays[r], kInfinity, kNoObject, counters);
+        return;
+    }
+    Closest query[kMaxPacket];
+    WideRay wide[kMaxPacket];
+    Real limit[kMaxPacket];
+    for (std::size_t r = 0; r < rays.size(); ++r) {
+        query[r] = {&rays[r], LazySlab(rays[r]), kNoObject, {}};
+        limit[r] = begin_closest(query[r], counters);
+        wide[r] = WideRay(rays[r]);
+    }
+    const std::vector<std::uint32_t>& items = bvh->items();
+    bvh->traverse_packet(wide, static_cast<int>(rays.size()), limit, counters,
+                         [&](int r, std::uint32_t begin, std::uint32_t end, Real& t_limit) {
+                             for (std::uint32_t slot = begin; slot < end; ++slot) {
+                                 counters.primitive();
+                                 consider(query[r], bounded_[items[slot]], counters);
+                             }
+                             t_limit = loose(query[r].best.t);
+                             return false;
+                         });
+    for (std::size_t r = 0; r < rays.size(); ++r) hits[r] = query[r].best;
+}
+
+template <class Counters, class Blocks>
+bool World::blocks_ray(const Ray& ray, const LazySlab& slab, Real t_max, std::uint32_t skip,
+                       std::uint32_t object, bool box_tested, Counters& counters,
+                       const Blocks& blocks) const {
+    return object != skip &&
+           intersect_object(objects_[object], ray, slab, t_max, box_tested, counters).found() &&
+           blocks(object);
 }
 
 template <class Counters, class Blocks>
@@ -143,14 +189,9 @@ bool World::any(const Ray& ray, Real t_max, std::uint32_t skip, Counters& counte
                 const Blocks& blocks) const {
     const LazySlab slab(ray);
     const bool boxes_tested = accel_.kind() == AccelKind::list; // each item's box, first
-    const auto hits = [&](std::uint32_t object, bool box_tested) {
-        return object != skip &&
-               intersect_object(objects_[object], ray, slab, t_max, box_tested, counters).found() &&
-               blocks(object);
-    };
     for (const std::uint32_t object : unbounded_) {
         counters.primitive();
-        if (hits(object, false)) return true;
+        if (blocks_ray(ray, slab, t_max, skip, object, false, counters, blocks)) return true;
     }
     bool found = false;
     // Boxes loosely, as intersect_object checks them after a hit: the list, testing each box
@@ -158,10 +199,54 @@ bool World::any(const Ray& ray, Real t_max, std::uint32_t skip, Counters& counte
     // end of a shadow ray 2e9 long, which the BVH counted (fuzz_nff).
     Real limit = loose(t_max);
     accel_.traverse(ray, limit, counters, [&](std::uint32_t item, Real&) {
-        found = hits(bounded_[item], boxes_tested);
+        found = blocks_ray(ray, slab, t_max, skip, bounded_[item], boxes_tested, counters, blocks);
         return found;
     });
     return found;
+}
+
+template <class Counters>
+void World::any_packet(std::span<const Ray> rays, Real t_max, const std::uint32_t* skips,
+                       bool* found, Counters& counters) const {
+    assert(rays.size() <= kMaxPacket);
+    const auto every = [](std::uint32_t) { return true; };
+    const WideBvh* bvh = accel_.wide_bvh();
+    if (!bvh) {
+        for (std::size_t r = 0; r < rays.size(); ++r)
+            found[r] = any(rays[r], t_max, skips[r], counters, every);
+        return;
+    }
+    // The unbounded objects ray by ray; the rays they leave unanswered go through the tree.
+    LazySlab slab[kMaxPacket];
+    WideRay wide[kMaxPacket];
+    Real limit[kMaxPacket];
+    int which[kMaxPacket], count = 0;
+    for (std::size_t r = 0; r < rays.size(); ++r) {
+        slab[r] = LazySlab(rays[r]);
+        found[r] = false;
+        for (const std::uint32_t object : unbounded_) {
+            counters.primitive();
+            if ((found[r] =
+                     blocks_ray(rays[r], slab[r], t_max, skips[r], object, false, counters, every)))
+                break;
+        }
+        if (found[r]) continue;
+        which[count] = static_cast<int>(r);
+        wide[count] = WideRay(rays[r]);
+        limit[count++] = loose(t_max);
+    }
+    const std::vector<std::uint32_t>& items = bvh->items();
+    bvh->traverse_packet(wide, count, limit, counters,
+                         [&](int k, std::uint32_t begin, std::uint32_t end, Real&) {
+                             const int r = which[k];
+                             for (std::uint32_t slot = begin; slot < end; ++slot) {
+                                 counters.primitive();
+                                 if (blocks_ray(rays[r], slab[r], t_max, skips[r],
+                                                bounded_[items[slot]], false, counters, every))
+                                     return found[r] = true;
+                             }
+                             return false;
+                         });
 }
 
 Hit World::intersect(const Ray& ray, Real t_max, std::uint32_t skip) const {
@@ -188,6 +273,19 @@ bool World::opaque_between(const Ray& ray, Real t_max, std::uint32_t skip,
     if (counting_) return any(ray, t_max, skip, counters_.local(), blocks);
     NoCounters none;
     return any(ray, t_max, skip, none, blocks);
+}
+
+void World::intersect_packet(std::span<const Ray> rays, Hit* hits) const {
+    if (counting_) return closest_packet(rays, hits, counters_.local());
+    NoCounters none;
+    closest_packet(rays, hits, none);
+}
+
+void World::occluded_packet(std::span<const Ray> rays, Real t_max, const std::uint32_t* skips,
+                            bool* occluded) const {
+    if (counting_) return any_packet(rays, t_max, skips, occluded, counters_.local());
+    NoCounters none;
+    any_packet(rays, t_max, skips, occluded, none);
 }
 
 Hit World::intersect_one(std::uint32_t object, const Ray& ray, Real t_max) const {

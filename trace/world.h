@@ -13,6 +13,7 @@
 
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 namespace glint {
@@ -67,14 +68,15 @@ struct SurfacePoint {
 // A query's SlabRay, made on first use: only queries that find a hit pay its divisions.
 class LazySlab {
   public:
-    explicit LazySlab(const Ray& ray) : ray_(ray) {}
+    LazySlab() = default;
+    explicit LazySlab(const Ray& ray) : ray_(&ray) {}
     const SlabRay& get() const {
-        if (!slab_) slab_.emplace(ray_);
+        if (!slab_) slab_.emplace(*ray_);
         return *slab_;
     }
 
   private:
-    const Ray& ray_;
+    const Ray* ray_ = nullptr;
     mutable std::optional<SlabRay> slab_;
 };
 
@@ -116,6 +118,13 @@ class World {
     // in (0, t_max); sets `transmissive` when a transmissive one is hit there too (when the
     // answer is false, whether any is).
     bool opaque_between(const Ray& ray, Real t_max, std::uint32_t skip, bool& transmissive) const;
+    // Packets of up to kMaxPacket coherent rays (a tile's camera rays, its shadow rays towards
+    // one light): exactly intersect(rays[i]) and occluded(rays[i], t_max, skips[i]) for each,
+    // with the BVH's nodes fetched once per packet (WideBvh::traverse_packet). With any other
+    // structure, ray by ray.
+    void intersect_packet(std::span<const Ray> rays, Hit* hits) const;
+    void occluded_packet(std::span<const Ray> rays, Real t_max, const std::uint32_t* skips,
+                         bool* occluded) const;
     // The first hit on one object alone, in (0, t_max).
     Hit intersect_one(std::uint32_t object, const Ray& ray, Real t_max = kInfinity) const;
     SurfacePoint surface(const Ray& ray, const Hit& hit) const;
@@ -150,12 +159,34 @@ class World {
     template <class Counters>
     ShapeHit intersect_shape(const Object& object, const Ray& world_ray, Real t_max,
                              Counters& counters) const;
+    // A closest-hit query: its best hit so far, and the tie rule (world.cpp), the same for a
+    // single ray and a packet's.
+    struct Closest {
+        const Ray* ray = nullptr;
+        LazySlab slab;
+        std::uint32_t skip = kNoObject;
+        Hit best;
+    };
+    // Starts `query` (t_max, skip set) on the unbounded objects; the limit for the structure.
+    template <class Counters> Real begin_closest(Closest& query, Counters& counters) const;
+    template <class Counters>
+    void consider(Closest& query, std::uint32_t object, Counters& counters) const;
     template <class Counters>
     Hit closest(const Ray& ray, Real t_max, std::uint32_t skip, Counters& counters) const;
+    template <class Counters>
+    void closest_packet(std::span<const Ray> rays, Hit* hits, Counters& counters) const;
+    // Whether object `object` (other than `skip`) is hit in (0, t_max) and `blocks` it.
+    template <class Counters, class Blocks>
+    bool blocks_ray(const Ray& ray, const LazySlab& slab, Real t_max, std::uint32_t skip,
+                    std::uint32_t object, bool box_tested, Counters& counters,
+                    const Blocks& blocks) const;
     // Whether an object other than `skip` for which `blocks(object)` holds is hit in (0, t_max).
     template <class Counters, class Blocks>
     bool any(const Ray& ray, Real t_max, std::uint32_t skip, Counters& counters,
              const Blocks& blocks) const;
+    template <class Counters>
+    void any_packet(std::span<const Ray> rays, Real t_max, const std::uint32_t* skips, bool* found,
+                    Counters& counters) const;
 
     // The camera-relative part: objects, lights and bounds; the structure is the caller's.
     struct CameraRelative {};
