@@ -155,15 +155,13 @@ void World::closest_packet(std::span<const Ray> rays, Hit* hits, Counters& count
         return;
     }
     Closest query[kMaxPacket];
-    WideRay wide[kMaxPacket];
-    Real limit[kMaxPacket];
+    Real limit[kMaxPacket] = {};
     for (std::size_t r = 0; r < rays.size(); ++r) {
         query[r] = {&rays[r], LazySlab(rays[r]), kNoObject, {}};
         limit[r] = begin_closest(query[r], counters);
-        wide[r] = WideRay(rays[r]);
     }
     const std::vector<std::uint32_t>& items = bvh->items();
-    bvh->traverse_packet(wide, static_cast<int>(rays.size()), limit, counters,
+    bvh->traverse_packet(rays.data(), static_cast<int>(rays.size()), limit, counters,
                          [&](int r, std::uint32_t begin, std::uint32_t end, Real& t_limit) {
                              for (std::uint32_t slot = begin; slot < end; ++slot) {
                                  counters.primitive();
@@ -218,7 +216,7 @@ void World::any_packet(std::span<const Ray> rays, Real t_max, const std::uint32_
     }
     // The unbounded objects ray by ray; the rays they leave unanswered go through the tree.
     LazySlab slab[kMaxPacket];
-    WideRay wide[kMaxPacket];
+    Ray pending[kMaxPacket];
     Real limit[kMaxPacket];
     int which[kMaxPacket], count = 0;
     for (std::size_t r = 0; r < rays.size(); ++r) {
@@ -232,11 +230,11 @@ void World::any_packet(std::span<const Ray> rays, Real t_max, const std::uint32_
         }
         if (found[r]) continue;
         which[count] = static_cast<int>(r);
-        wide[count] = WideRay(rays[r]);
+        pending[count] = rays[r];
         limit[count++] = loose(t_max);
     }
     const std::vector<std::uint32_t>& items = bvh->items();
-    bvh->traverse_packet(wide, count, limit, counters,
+    bvh->traverse_packet(pending, count, limit, counters,
                          [&](int k, std::uint32_t begin, std::uint32_t end, Real&) {
                              const int r = which[k];
                              for (std::uint32_t slot = begin; slot < end; ++slot) {

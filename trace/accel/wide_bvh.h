@@ -87,6 +87,73 @@ struct WideRay {
     }
 };
 
+// Up to kMaxPacket rays prepared for wide nodes, one lane per ray (structure of arrays), so that
+// a child's box is tested against four rays per SSE instruction. Lanes beyond the packet have
+// t_max = −inf: no box is entered before it.
+struct PacketRays {
+    using Mask = std::uint32_t; // bit r: ray r
+    static_assert(kMaxPacket <= 32 && kMaxPacket % 4 == 0);
+
+    alignas(16) Real origin[3][kMaxPacket];
+    alignas(16) Real inverse_direction[3][kMaxPacket];
+    alignas(16) Real t_max[kMaxPacket];
+    Mask all;
+
+    PacketRays(const Ray* rays, int count, const Real* limits)
+        : all(count == 32 ? ~Mask{0} : (Mask{1} << count) - 1) {
+        for (int r = 0; r < kMaxPacket; ++r) {
+            const SlabRay slab(r < count ? rays[r] : Ray{Vec3(0), Vec3(1)});
+            for (int a = 0; a < 3; ++a)
+                origin[a][r] = slab.origin[a], inverse_direction[a][r] = slab.inverse_direction[a];
+            t_max[r] = r < count ? limits[r] : -kInfinity;
+        }
+    }
+
+    // The rays of `active` that meet child k's box within [0, t_max]; `t` lowered to the
+    // nearest of their entry distances. Per ray, SlabRay::clip's arithmetic: near and far of
+    // each axis by min and max, which for a box with lo ≤ hi is the plane the sign selects.
+    [[gnu::always_inline]] Mask enter(const WideBvhNode& n, int k, Mask active, Real& t) const {
+        constexpr Real widen = 1.0_r + 2.0_r * gamma(3); // SlabRay::clip's enlargement
+        Mask met = 0;
+        for (int g = 0; g < kMaxPacket; g += 4) {
+            if (((active >> g) & 15) == 0) continue;
+#if GLINT_WIDE_BVH_SSE
+            __m128 t_in = _mm_setzero_ps(), t_out = _mm_set1_ps(kInfinity);
+            for (int a = 0; a < 3; ++a) {
+                const __m128 o = _mm_load_ps(&origin[a][g]);
+                const __m128 inv = _mm_load_ps(&inverse_direction[a][g]);
+                const __m128 t0 = _mm_mul_ps(_mm_sub_ps(_mm_set1_ps(n.box[a][0][k]), o), inv);
+                const __m128 t1 = _mm_mul_ps(_mm_sub_ps(_mm_set1_ps(n.box[a][1][k]), o), inv);
+                t_in = _mm_max_ps(t_in, _mm_min_ps(t0, t1));
+                t_out = _mm_min_ps(t_out, _mm_max_ps(t0, t1));
+            }
+            t_out = _mm_min_ps(_mm_mul_ps(t_out, _mm_set1_ps(widen)), _mm_load_ps(&t_max[g]));
+            const __m128 inside = _mm_cmple_ps(t_in, t_out);
+            const Mask lanes = static_cast<Mask>(_mm_movemask_ps(inside)) & (active >> g) & 15;
+            if (lanes == 0) continue;
+            met |= lanes << g;
+            alignas(16) Real entry[4];
+            _mm_store_ps(entry, t_in);
+            for (Mask l = lanes; l != 0; l &= l - 1) t = std::min(t, entry[__builtin_ctz(l)]);
+#else
+            for (int r = g; r < g + 4; ++r) {
+                if (!((active >> r) & 1)) continue;
+                Real t_in = 0, t_out = kInfinity;
+                for (int a = 0; a < 3; ++a) {
+                    const Real t0 = (n.box[a][0][k] - origin[a][r]) * inverse_direction[a][r];
+                    const Real t1 = (n.box[a][1][k] - origin[a][r]) * inverse_direction[a][r];
+                    t_in = std::max(t_in, std::min(t0, t1));
+                    t_out = std::min(t_out, std::max(t0, t1));
+                }
+                if (t_in <= std::min(t_out * widen, t_max[r]))
+                    met |= Mask{1} << r, t = std::min(t, t_in);
+            }
+#endif
+        }
+        return met;
+    }
+};
+
 class WideBvh {
   public:
     WideBvh() = default;
@@ -132,7 +199,11 @@ class WideBvh {
                 for (; at > 0 && hit[at - 1].t > e.t; --at) hit[at] = hit[at - 1];
                 hit[at] = e;
             }
-            for (int k = hits - 1; k > 0; --k) stack[top++] = hit[k];
+            for (int k = hits - 1; k > 0; --k) {
+                // A waiting inner child is fetched while the nearer ones are traversed.
+                if (hit[k].count == 0) prefetch(hit[k].child);
+                stack[top++] = hit[k];
+            }
             Entry next;
             if (hits > 0) {
                 next = hit[0];
@@ -164,17 +235,19 @@ class WideBvh {
 
     // Packet traversal for up to kMaxPacket coherent rays (a tile's camera rays, or its shadow
     // rays towards one light): each node is fetched once for all the rays that reach it, and
-    // tested against each of them with the single-ray test, so every ray is offered exactly the
-    // leaves its own traversal could offer (in another order; the visitors' answers do not depend
-    // on the order: tests/accel_test.cpp). visit(ray, first_slot, end_slot, t_max[ray]) may
-    // shorten that ray's limit and returns true when the ray is done (any hit found).
+    // each child box is tested against four rays at a time (PacketRays). The test is the single
+    // ray's slab test up to which plane is near (taken by min/max rather than by sign), so every
+    // ray is offered the leaves its own traversal could be offered (in another order; the
+    // visitors' answers do not depend on the order: tests/accel_test.cpp).
+    // visit(ray, first_slot, end_slot, t_max) may shorten that ray's limit and returns true when
+    // the ray is done (any hit found). t_max[r] is each ray's limit, as in traverse.
     template <class Counters, class VisitLeaf>
-    void traverse_packet(const WideRay* rays, int count, Real* t_max, Counters& counters,
+    void traverse_packet(const Ray* rays, int count, const Real* t_max, Counters& counters,
                          VisitLeaf&& visit) const {
         assert(count <= kMaxPacket);
         if (nodes_.empty() || count == 0) return;
-        using Mask = std::uint32_t;
-        static_assert(kMaxPacket <= 8 * sizeof(Mask));
+        PacketRays packet(rays, count, t_max);
+        using Mask = PacketRays::Mask;
         struct Entry {
             std::uint32_t child, count;
             Mask rays; // the rays that met the child's box
@@ -183,41 +256,33 @@ class WideBvh {
         Entry stack[(kBvhWidth - 1) * kMaxBvhDepth + 1];
         int top = 0;
         Mask done = 0; // rays whose visitor said they are finished
-        Entry next{0, 0, count == 32 ? ~Mask{0} : (Mask{1} << count) - 1, 0};
+        Entry next{0, 0, packet.all, 0};
         for (;;) {
-            if (next.count == 0) { // an inner node: which of its children each ray meets
+            if (next.count == 0) { // an inner node: which rays meet each of its children
+                counters.node();
                 const WideBvhNode& n = nodes_[next.child];
-                Entry child[kBvhWidth];
-                for (int k = 0; k < kBvhWidth; ++k)
-                    child[k] = {n.child[k], n.count[k], 0, kInfinity};
-                for (Mask active = next.rays & ~done; active != 0; active &= active - 1) {
-                    const int r = __builtin_ctz(active);
-                    counters.node();
-                    Real t_near[kBvhWidth];
-                    for (unsigned m = rays[r].enter(n, t_max[r], t_near); m != 0; m &= m - 1) {
-                        const int k = __builtin_ctz(m);
-                        child[k].rays |= Mask{1} << r;
-                        child[k].t = std::min(child[k].t, t_near[k]);
-                    }
-                }
-                // Nearest first: the others wait on the stack, farthest deepest.
+                const Mask active = next.rays & ~done;
+                Entry hit[kBvhWidth];
                 int hits = 0;
                 for (int k = 0; k < kBvhWidth; ++k) {
-                    if (child[k].rays == 0) continue;
-                    const Entry e = child[k];
-                    int at = hits++;
-                    for (; at > 0 && child[at - 1].t > e.t; --at) child[at] = child[at - 1];
-                    child[at] = e;
+                    if (n.child[k] == kEmptyChild) continue;
+                    Real t = kInfinity;
+                    const Mask met = packet.enter(n, k, active, t);
+                    if (met == 0) continue;
+                    const Entry e{n.child[k], n.count[k], met, t};
+                    int at = hits++; // nearest first
+                    for (; at > 0 && hit[at - 1].t > e.t; --at) hit[at] = hit[at - 1];
+                    hit[at] = e;
                 }
-                for (int k = hits - 1; k > 0; --k) stack[top++] = child[k];
+                for (int k = hits - 1; k > 0; --k) stack[top++] = hit[k];
                 if (hits > 0) {
-                    next = child[0];
+                    next = hit[0];
                     continue;
                 }
             } else { // a leaf: each ray that met its box visits it
                 for (Mask active = next.rays & ~done; active != 0; active &= active - 1) {
                     const int r = __builtin_ctz(active);
-                    if (visit(r, next.child, next.child + next.count, t_max[r]))
+                    if (visit(r, next.child, next.child + next.count, packet.t_max[r]))
                         done |= Mask{1} << r;
                 }
             }
@@ -229,6 +294,12 @@ class WideBvh {
     }
 
   private:
+    void prefetch(std::uint32_t node) const {
+        const char* p = reinterpret_cast<const char*>(&nodes_[node]);
+        for (std::size_t line = 0; line < sizeof(WideBvhNode); line += 64)
+            __builtin_prefetch(p + line);
+    }
+
     // The next waiting child the ray still reaches before t_max, if any.
     template <class Entry> static bool pop(const Entry* stack, int& top, Real t_max, Entry& next) {
         do {
