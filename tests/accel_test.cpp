@@ -362,6 +362,59 @@ TEST(Accel, BvhDepthStaysWithinTheTraversalStackWhereSahPeelsOneObjectALevel) {
     EXPECT_GT(depth, kSahDepth) << "no longer the adversarial case this test is about";
 }
 
+// A mesh's own BVH (four-wide, triangles in leaf order) returns exactly what testing every
+// triangle in index order returns: the nearest t, and on equal t the lower triangle index, so
+// the answer does not depend on the order the tree offers its leaves in. The mesh is a grid of
+// triangles sharing edges and vertices (rays aimed at them tie on t), with a few triangles
+// repeated at far-apart indices (every hit on them ties).
+TEST(Accel, MeshHitsAreTheSameWhateverTheVisitingOrder) {
+    TriangleMesh given;
+    constexpr std::uint32_t n = 24;
+    for (std::uint32_t j = 0; j < n; ++j)
+        for (std::uint32_t i = 0; i < n; ++i)
+            given.vertices.push_back({static_cast<float>(i), 0.3f * static_cast<float>((i * j) % 5),
+                                      static_cast<float>(j)});
+    for (std::uint32_t j = 0; j + 1 < n; ++j)
+        for (std::uint32_t i = 0; i + 1 < n; ++i) {
+            const std::uint32_t a = j * n + i;
+            given.triangles.push_back({a, a + n, a + 1});
+            given.triangles.push_back({a + 1, a + n, a + n + 1});
+        }
+    // Repeats: the same corners at a later index, and one at an earlier index too.
+    for (const std::size_t k : {3u, 200u, 777u}) given.triangles.push_back(given.triangles[k]);
+    given.triangles.insert(given.triangles.begin() + 5, given.triangles[900]);
+    const Mesh mesh = prepare_mesh(given);
+    ASSERT_FALSE(mesh.bvh.nodes().empty());
+
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(0, static_cast<float>(n - 1));
+    int ties = 0;
+    for (int k = 0; k < 50000; ++k) {
+        // From above, at a random point or exactly at a grid vertex or edge midpoint.
+        Vec3 target(u(rng), 0, u(rng));
+        if (k % 3 == 0) target = glm::round(target);
+        if (k % 3 == 1) target.x = std::round(target.x * 2) / 2;
+        const Vec3 origin(u(rng), 10, u(rng));
+        const Ray ray{origin, target - origin};
+        ShapeHit expected;
+        const WatertightRay prepared(ray);
+        for (std::uint32_t i = 0; i < mesh.triangles.size(); ++i) {
+            const glm::uvec3 t = mesh.triangles[i];
+            const TriangleHit h = intersect_triangle(mesh.vertices[t.x], mesh.vertices[t.y],
+                                                     mesh.vertices[t.z], prepared);
+            ties += h.t > 0 && h.t == expected.t;
+            if (h.t > 0 && h.t < kInfinity && h.t < expected.t) expected = {h.t, i, h.u, h.v};
+        }
+        NoCounters none;
+        const ShapeHit got = intersect_mesh(mesh, ray, kInfinity, none);
+        ASSERT_EQ(got.t, expected.t) << "ray " << k;
+        ASSERT_EQ(got.part, expected.part) << "ray " << k;
+        ASSERT_EQ(got.u, expected.u) << "ray " << k;
+        ASSERT_EQ(got.v, expected.v) << "ray " << k;
+    }
+    EXPECT_GT(ties, 1000) << "too few ties to mean much";
+}
+
 TEST(Accel, DefaultIsTheListForSmallScenesAndABvhBeyond) {
     const Scene small = random_scene(1, 5);
     EXPECT_EQ(World(small).accelerator().kind(), AccelKind::list);

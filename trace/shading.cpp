@@ -65,11 +65,6 @@ Real light_through(const World& world, const SurfacePoint& surface, Vec3 light, 
 
 } // namespace
 
-LightDirection light_direction(const SurfacePoint& surface, const Light& light) {
-    const Vec3 l = glm::normalize(light.position - surface.position);
-    return {l, glm::dot(surface.shading, l)};
-}
-
 // The lecture's sum, with §11's checker, shadows through glass and transmitted rays (62 lines:
 // the local terms and the two kinds of secondary ray share the weight rule and its counters).
 Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoint& surface,

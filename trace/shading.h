@@ -41,7 +41,10 @@ struct LightDirection {
     Real n_dot_l;
     bool in_front() const { return n_dot_l > 0; }
 };
-LightDirection light_direction(const SurfacePoint& surface, const Light& light);
+inline LightDirection light_direction(const SurfacePoint& surface, const Light& light) {
+    const Vec3 l = glm::normalize(light.position - surface.position);
+    return {l, glm::dot(surface.shading, l)};
+}
 
 // The shadow ray towards a light at `position` from a surface: spawned off the surface, ending at
 // the light at t = 1, skipping what the surface may skip.

@@ -11,7 +11,9 @@ struct NoCounters {
 };
 
 struct TraversalCounters {
-    std::uint64_t nodes = 0;      // boxes, spheres, cells or kd nodes visited
+    // Nodes visited: boxes (bvh2), spheres, cells or kd nodes; a four-wide node (bvh) counts
+    // once for its four boxes, and once per ray of a packet that tests it.
+    std::uint64_t nodes = 0;
     std::uint64_t primitives = 0; // objects (or triangles) whose exact test ran
 
     void node() { ++nodes; }

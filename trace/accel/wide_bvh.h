@@ -259,9 +259,9 @@ class WideBvh {
         Entry next{0, 0, packet.all, 0};
         for (;;) {
             if (next.count == 0) { // an inner node: which rays meet each of its children
-                counters.node();
                 const WideBvhNode& n = nodes_[next.child];
                 const Mask active = next.rays & ~done;
+                for (Mask m = active; m != 0; m &= m - 1) counters.node(); // per ray, as alone
                 Entry hit[kBvhWidth];
                 int hits = 0;
                 for (int k = 0; k < kBvhWidth; ++k) {
