@@ -73,6 +73,7 @@ World::World(const Scene& scene, std::shared_ptr<const SceneGeometry> geometry,
     const AccelKind kind =
         accel.value_or(bounded_.size() < kListBelow ? AccelKind::list : AccelKind::bvh);
     accel_ = Accelerator(kind, item_bounds());
+    order_leaves();
     build_seconds_ = watch.seconds();
 }
 
@@ -80,7 +81,36 @@ World::World(const Scene& scene, const World& previous)
     : World(scene, previous.geometry_, CameraRelative{}) {
     const Stopwatch watch;
     accel_ = previous.accel_.refitted(item_bounds());
+    order_leaves();
     build_seconds_ = watch.seconds();
+}
+
+void World::order_leaves() {
+    leaf_objects_.clear();
+    const WideBvh* bvh = accel_.wide_bvh();
+    if (!bvh) return;
+    leaf_objects_.reserve(bvh->items().size());
+    for (const std::uint32_t item : bvh->items())
+        leaf_objects_.push_back({objects_[bounded_[item]], bounded_[item]});
+}
+
+template <class Counters, class Visit>
+void World::traverse(const Ray& ray, Real& t_max, Counters& counters, Visit&& visit) const {
+    if (const WideBvh* bvh = accel_.wide_bvh()) {
+        bvh->traverse_leaves(ray, t_max, counters,
+                             [&](std::uint32_t begin, std::uint32_t end, Real& limit) {
+                                 for (std::uint32_t slot = begin; slot < end; ++slot) {
+                                     counters.primitive();
+                                     const LeafObject& leaf = leaf_objects_[slot];
+                                     if (visit(leaf.index, leaf.object, limit)) return true;
+                                 }
+                                 return false;
+                             });
+        return;
+    }
+    accel_.traverse(ray, t_max, counters, [&](std::uint32_t item, Real& limit) {
+        return visit(bounded_[item], objects_[bounded_[item]], limit);
+    });
 }
 
 // A hit counts only when the ray meets the object's box within (0, t_max), as the list has
@@ -114,21 +144,22 @@ ShapeHit World::intersect_shape(const Object& object, const Ray& world_ray, Real
 // so every structure returns exactly the list's hit. Each object is therefore tested up to the
 // next float above the best t, and an equal t replaces the best only from a lower index.
 template <class Counters>
-void World::consider(Closest& query, std::uint32_t object, Counters& counters) const {
-    if (object == query.skip) return;
+void World::consider(Closest& query, std::uint32_t index, const Object& object,
+                     Counters& counters) const {
+    if (index == query.skip) return;
     Hit& best = query.best;
     const Real limit = best.found() ? std::nextafter(best.t, kInfinity) : best.t;
     const bool boxes_tested = accel_.kind() == AccelKind::list; // each item's box, first
     const ShapeHit h =
-        intersect_object(objects_[object], *query.ray, query.slab, limit, boxes_tested, counters);
-    if (h.t < best.t || (h.t == best.t && best.found() && object < best.object))
-        best = {h.t, object, h.part, h.u, h.v};
+        intersect_object(object, *query.ray, query.slab, limit, boxes_tested, counters);
+    if (h.t < best.t || (h.t == best.t && best.found() && index < best.object))
+        best = {h.t, index, h.part, h.u, h.v};
 }
 
 // Let the structure prune only beyond the best hit, loosely: ties at best.t must still be seen.
 template <class Counters> Real World::begin_closest(Closest& query, Counters& counters) const {
     for (const std::uint32_t object : unbounded_)
-        counters.primitive(), consider(query, object, counters);
+        counters.primitive(), consider(query, object, objects_[object], counters);
     return loose(query.best.t);
 }
 
@@ -137,8 +168,8 @@ Hit World::closest(const Ray& ray, Real t_max, std::uint32_t skip, Counters& cou
     Closest query{&ray, LazySlab(ray), skip, {}};
     query.best.t = t_max;
     Real limit = begin_closest(query, counters);
-    accel_.traverse(ray, limit, counters, [&](std::uint32_t item, Real& t_limit) {
-        consider(query, bounded_[item], counters);
+    traverse(ray, limit, counters, [&](std::uint32_t index, const Object& object, Real& t_limit) {
+        consider(query, index, object, counters);
         t_limit = loose(query.best.t);
         return false;
     });
@@ -160,12 +191,12 @@ void World::closest_packet(std::span<const Ray> rays, Hit* hits, Counters& count
         query[r] = {&rays[r], LazySlab(rays[r]), kNoObject, {}};
         limit[r] = begin_closest(query[r], counters);
     }
-    const std::vector<std::uint32_t>& items = bvh->items();
     bvh->traverse_packet(rays.data(), static_cast<int>(rays.size()), limit, counters,
                          [&](int r, std::uint32_t begin, std::uint32_t end, Real& t_limit) {
                              for (std::uint32_t slot = begin; slot < end; ++slot) {
                                  counters.primitive();
-                                 consider(query[r], bounded_[items[slot]], counters);
+                                 const LeafObject& leaf = leaf_objects_[slot];
+                                 consider(query[r], leaf.index, leaf.object, counters);
                              }
                              t_limit = loose(query[r].best.t);
                              return false;
@@ -175,11 +206,11 @@ void World::closest_packet(std::span<const Ray> rays, Hit* hits, Counters& count
 
 template <class Counters, class Blocks>
 bool World::blocks_ray(const Ray& ray, const LazySlab& slab, Real t_max, std::uint32_t skip,
-                       std::uint32_t object, bool box_tested, Counters& counters,
-                       const Blocks& blocks) const {
-    return object != skip &&
-           intersect_object(objects_[object], ray, slab, t_max, box_tested, counters).found() &&
-           blocks(object);
+                       std::uint32_t index, const Object& object, bool box_tested,
+                       Counters& counters, const Blocks& blocks) const {
+    return index != skip &&
+           intersect_object(object, ray, slab, t_max, box_tested, counters).found() &&
+           blocks(index);
 }
 
 template <class Counters, class Blocks>
@@ -189,15 +220,16 @@ bool World::any(const Ray& ray, Real t_max, std::uint32_t skip, Counters& counte
     const bool boxes_tested = accel_.kind() == AccelKind::list; // each item's box, first
     for (const std::uint32_t object : unbounded_) {
         counters.primitive();
-        if (blocks_ray(ray, slab, t_max, skip, object, false, counters, blocks)) return true;
+        if (blocks_ray(ray, slab, t_max, skip, object, objects_[object], false, counters, blocks))
+            return true;
     }
     bool found = false;
     // Boxes loosely, as intersect_object checks them after a hit: the list, testing each box
     // first against t_max itself, missed an occluder whose box entry rounded just beyond the
     // end of a shadow ray 2e9 long, which the BVH counted (fuzz_nff).
     Real limit = loose(t_max);
-    accel_.traverse(ray, limit, counters, [&](std::uint32_t item, Real&) {
-        found = blocks_ray(ray, slab, t_max, skip, bounded_[item], boxes_tested, counters, blocks);
+    traverse(ray, limit, counters, [&](std::uint32_t index, const Object& object, Real&) {
+        found = blocks_ray(ray, slab, t_max, skip, index, object, boxes_tested, counters, blocks);
         return found;
     });
     return found;
@@ -224,8 +256,8 @@ void World::any_packet(std::span<const Ray> rays, Real t_max, const std::uint32_
         found[r] = false;
         for (const std::uint32_t object : unbounded_) {
             counters.primitive();
-            if ((found[r] =
-                     blocks_ray(rays[r], slab[r], t_max, skips[r], object, false, counters, every)))
+            if ((found[r] = blocks_ray(rays[r], slab[r], t_max, skips[r], object, objects_[object],
+                                       false, counters, every)))
                 break;
         }
         if (found[r]) continue;
@@ -233,14 +265,14 @@ void World::any_packet(std::span<const Ray> rays, Real t_max, const std::uint32_
         pending[count] = rays[r];
         limit[count++] = loose(t_max);
     }
-    const std::vector<std::uint32_t>& items = bvh->items();
     bvh->traverse_packet(pending, count, limit, counters,
                          [&](int k, std::uint32_t begin, std::uint32_t end, Real&) {
                              const int r = which[k];
                              for (std::uint32_t slot = begin; slot < end; ++slot) {
                                  counters.primitive();
-                                 if (blocks_ray(rays[r], slab[r], t_max, skips[r],
-                                                bounded_[items[slot]], false, counters, every))
+                                 const LeafObject& leaf = leaf_objects_[slot];
+                                 if (blocks_ray(rays[r], slab[r], t_max, skips[r], leaf.index,
+                                                leaf.object, false, counters, every))
                                      return found[r] = true;
                              }
                              return false;

@@ -170,7 +170,12 @@ class World {
     // Starts `query` (t_max, skip set) on the unbounded objects; the limit for the structure.
     template <class Counters> Real begin_closest(Closest& query, Counters& counters) const;
     template <class Counters>
-    void consider(Closest& query, std::uint32_t object, Counters& counters) const;
+    void consider(Closest& query, std::uint32_t index, const Object& object,
+                  Counters& counters) const;
+    // The bounded objects the ray may meet, through the structure: visit(index, object, t_max)
+    // as the structure's visitor (accel.h); with the four-wide BVH, from leaf_objects_.
+    template <class Counters, class Visit>
+    void traverse(const Ray& ray, Real& t_max, Counters& counters, Visit&& visit) const;
     template <class Counters>
     Hit closest(const Ray& ray, Real t_max, std::uint32_t skip, Counters& counters) const;
     template <class Counters>
@@ -178,7 +183,7 @@ class World {
     // Whether object `object` (other than `skip`) is hit in (0, t_max) and `blocks` it.
     template <class Counters, class Blocks>
     bool blocks_ray(const Ray& ray, const LazySlab& slab, Real t_max, std::uint32_t skip,
-                    std::uint32_t object, bool box_tested, Counters& counters,
+                    std::uint32_t index, const Object& object, bool box_tested, Counters& counters,
                     const Blocks& blocks) const;
     // Whether an object other than `skip` for which `blocks(object)` holds is hit in (0, t_max).
     template <class Counters, class Blocks>
@@ -203,6 +208,14 @@ class World {
     std::vector<std::uint32_t> unbounded_; // planes: tested by every ray
     std::vector<std::uint32_t> bounded_;   // accelerator item → object index
     Accelerator accel_;
+    // With the four-wide BVH, its leaves' objects in its slot order, so that the objects a leaf
+    // names are adjacent in memory (copies of objects_[index]; empty for other structures).
+    struct LeafObject {
+        Object object;
+        std::uint32_t index;
+    };
+    std::vector<LeafObject> leaf_objects_;
+    void order_leaves();
     double build_seconds_ = 0;
     bool counting_ = false;
     mutable tbb::enumerable_thread_specific<TraversalCounters> counters_;

@@ -1,8 +1,9 @@
 // Four-wide bounding volume hierarchy: the binary SAH tree (binary_bvh.h) collapsed so that each
 // node holds the boxes of up to four children side by side, tested together with one SIMD slab
 // test (SSE in float, which every x86-64 processor has; the same arithmetic lane by lane in
-// double). Leaves are the binary tree's: their items are contiguous, so that a user may keep its
-// hot data (a mesh's triangles) in leaf order and read it by slot (traverse_leaves).
+// double). Leaves are the binary tree's (at most 8 items): their items are contiguous, so that a
+// user may keep its hot data (a mesh's triangles) in leaf order and read it by slot
+// (traverse_leaves). Packets of up to kMaxPacket rays traverse it together (traverse_packet).
 #pragma once
 
 #include "trace/accel/binary_bvh.h"
@@ -42,11 +43,10 @@ struct alignas(64) WideBvhNode {
 // each axis costs two subtractions and two multiplications for all four children, no min/max.
 // For boxes with lo ≤ hi this is SlabRay::clip exactly, enlargement of the far end included.
 struct WideRay {
-    Vec3 origin{0};
-    Vec3 inverse_direction{0};
-    int near[3] = {}; // 0: the low plane is entered first; 1: the high one
+    Vec3 origin;
+    Vec3 inverse_direction;
+    int near[3]; // 0: the low plane is entered first; 1: the high one
 
-    WideRay() = default;
     explicit WideRay(const Ray& ray) {
         const SlabRay slab(ray);
         origin = slab.origin, inverse_direction = slab.inverse_direction;
