@@ -110,13 +110,16 @@ TEST_P(AccelTest, AgreesExactlyWithTheListOnAMillionRandomRays) {
 
 // Packets (World::intersect_packet, occluded_packet): every ray of a packet gets exactly the
 // list's answer, for coherent packets (a 4×4 block of camera rays, shadow rays from scattered
-// points towards one light) and incoherent ones (random rays), partly filled ones included.
+// points towards one light) and incoherent ones (random rays), partly filled ones included:
+// about a million rays in 125,000 packets over 250 scenes for the BVH.
 TEST_P(AccelTest, PacketsAgreeExactlyWithTheListRayByRay) {
     const AccelKind kind = GetParam();
     std::mt19937 rng(99);
     std::uniform_real_distribution<float> u(-1, 1);
     std::uint64_t rays = 0;
-    for (unsigned seed = 0; seed < 60; ++seed) {
+    // The four-wide BVH traverses packets; the other structures answer them ray by ray.
+    const unsigned scenes = kind == AccelKind::bvh ? 250 : 20;
+    for (unsigned seed = 0; seed < scenes; ++seed) {
         Scene scene = random_scene(seed, 10 + static_cast<int>(seed % 7) * 15);
         scene.camera.eye = {0, 0, 0};
         scene.camera.look_at = {0, 0, -1};
@@ -160,7 +163,7 @@ TEST_P(AccelTest, PacketsAgreeExactlyWithTheListRayByRay) {
             }
         }
     }
-    EXPECT_GT(rays, 200'000u);
+    EXPECT_GT(rays, scenes * 500 * 4);
 }
 
 TEST_P(AccelTest, RendersAreByteIdenticalToTheList) {
