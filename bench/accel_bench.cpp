@@ -391,7 +391,8 @@ BENCHMARK(GlintShadowPackets)->Apply(peer_arguments);
 void MeshBuild(benchmark::State& state) {
     const std::vector<Bounds> triangles = triangle_bounds(terrain().world->mesh(0));
     for (auto _ : state) benchmark::DoNotOptimize(WideBvh(triangles));
-    state.SetLabel(std::to_string(triangles.size()) + " triangles");
+    state.SetLabel(std::to_string(triangles.size()) + " triangles, nodes and item slots " +
+                   std::to_string(WideBvh(triangles).memory_bytes() >> 20) + " MB");
 }
 BENCHMARK(MeshBuild)->Unit(benchmark::kMillisecond);
 

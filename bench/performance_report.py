@@ -9,8 +9,8 @@ import json
 import math
 from collections import defaultdict
 
-NAMES = ["list", "bvh", "spheres", "grid", "kd"]
-COLOURS = {"list": "#888888", "bvh": "#d62728", "spheres": "#1f77b4", "grid": "#2ca02c", "kd": "#9467bd"}
+NAMES = ["list", "bvh", "spheres", "grid", "kd", "bvh2"]
+COLOURS = {"list": "#888888", "bvh": "#d62728", "bvh2": "#ff7f0e", "spheres": "#1f77b4", "grid": "#2ca02c", "kd": "#9467bd"}
 
 
 def load(path):
@@ -102,12 +102,27 @@ def main():
             frame_rows.append([f"{n:,}", f"{ms(one):.1f}", f"{ms(two):.1f}", f"{ms(one) / (2 * ms(two)) * 100:.0f}%"])
     print(table("Frame 256×256 with shadows and one reflection, BVH (ms)",
                 ["spheres", "1 thread", "2 threads", "parallel efficiency"], frame_rows))
-    glint, embree, build = runs.get("MeshRaysGlint"), runs.get("MeshRaysEmbree"), runs.get("MeshBuild")
-    if glint and embree:
-        print(table("10⁶-triangle terrain, closest hit, 1 thread",
-                    ["", "glint BVH", "Embree rtcIntersect1", "glint / Embree time"],
-                    [["million rays/s", f"{glint['items_per_second'] / 1e6:.2f}", f"{embree['items_per_second'] / 1e6:.2f}",
-                      f"{embree['items_per_second'] / glint['items_per_second']:.2f}×"]]))
+    # Peers: glint against Embree on the same rays (bench/accel_bench.cpp, "Peers").
+    pairs = [("closest hit, single rays", "GlintClosest", "EmbreeIntersect1"),
+             ("camera rays, one at a time", "GlintCameraSingle", "EmbreeCameraIntersect1"),
+             ("camera rays, packets (glint 16; Embree rtcIntersect16)", "GlintPackets", "EmbreeIntersect16"),
+             ("camera rays, packets (glint 16; Embree rtcIntersect8)", "GlintPackets", "EmbreeIntersect8"),
+             ("shadow rays, any hit, single rays", "GlintShadow", "EmbreeOccluded1"),
+             ("shadow rays, any hit, glint's packets of 16", "GlintShadowPackets", "EmbreeOccluded1")]
+    for scene, balls in [("10⁶-triangle terrain", 0), ("balls-4 (7,381 spheres)", 1)]:
+        rows = []
+        for what, ours, theirs in pairs:
+            for threads, flag in [("1 thread", 0), ("2 threads", 1)]:
+                key = f"/balls:{balls}/all:{flag}/real_time"
+                g, e = runs.get(ours + key), runs.get(theirs + key)
+                if g and e:
+                    rows.append([what, threads, f"{g['items_per_second'] / 1e6:.2f}",
+                                 f"{e['items_per_second'] / 1e6:.2f}",
+                                 f"{e['items_per_second'] / g['items_per_second']:.2f}×"])
+        if rows:
+            print(table(f"{scene}: glint against Embree, million rays/s",
+                        ["rays", "threads", "glint", "Embree", "glint / Embree time"], rows))
+    build = runs.get("MeshBuild")
     if build:
         print(f"BVH build over the terrain's triangles: {ms(build):.0f} ms ({build.get('label', '')}).\n")
     if args.svg:
