@@ -1,9 +1,10 @@
 // Acceleration structures measured: build time, and rays per second for primary, shadow and
-// reflection rays, on random spheres (10² … 10⁶) and on a large triangle mesh, against Embree's
-// rtcIntersect1 on the same triangles in the same run; and frame-time scaling with threads.
+// reflection rays, on random spheres (10² … 10⁶); frame-time scaling with threads; and glint
+// against Embree on the same rays in the same run (a 10⁶-triangle terrain and SPD's balls-4:
+// single rays, packets, shadow rays; "Peers" below).
 //
 //   glint bench                                   (everything; a few minutes)
-//   glint bench --benchmark_filter=Mesh           (Google Benchmark's own flags pass through)
+//   glint bench --benchmark_filter='^(Glint|Embree)'   (Google Benchmark's flags pass through)
 #include "trace/render.h"
 #include "trace/scene_loader.h"
 #include "trace/shading.h"
@@ -286,19 +287,29 @@ void label(benchmark::State& state, const PeerScene& peer, std::int64_t rays) {
                    std::to_string(peer.spheres.size()) + " spheres");
 }
 
-void GlintClosest(benchmark::State& state) {
+// The rays of `rays` one at a time (closest hit).
+void glint_single(benchmark::State& state, std::vector<Ray> PeerScene::*rays) {
     const PeerScene* peer = peer_of(state);
     if (!peer) return state.SkipWithError("no ../shared/scenes/spd beside the checkout");
+    const std::vector<Ray>& given = peer->*rays;
     std::atomic<std::int64_t> hits = 0;
     for (auto _ : state)
-        over_rays(peer->closest.size(), state.range(1), [&](std::size_t b, std::size_t e) {
+        over_rays(given.size(), state.range(1), [&](std::size_t b, std::size_t e) {
             std::int64_t found = 0;
-            for (std::size_t i = b; i < e; ++i)
-                found += peer->world->intersect(peer->closest[i]).found();
+            for (std::size_t i = b; i < e; ++i) found += peer->world->intersect(given[i]).found();
             hits += found;
         });
-    label(state, *peer, state.iterations() * static_cast<std::int64_t>(peer->closest.size()));
+    label(state, *peer, state.iterations() * static_cast<std::int64_t>(given.size()));
     state.counters["hits"] = static_cast<double>(hits) / static_cast<double>(state.iterations());
+}
+
+void GlintClosest(benchmark::State& state) {
+    glint_single(state, &PeerScene::closest);
+}
+
+// The camera image's rays one at a time, in the same block order: what packets save.
+void GlintCameraSingle(benchmark::State& state) {
+    glint_single(state, &PeerScene::camera);
 }
 
 void GlintPackets(benchmark::State& state) {
@@ -314,22 +325,6 @@ void GlintPackets(benchmark::State& state) {
                 peer->world->intersect_packet({&peer->camera[p * kMaxPacket], kMaxPacket}, out);
                 for (const Hit& h : out) found += h.found();
             }
-            hits += found;
-        });
-    label(state, *peer, state.iterations() * static_cast<std::int64_t>(peer->camera.size()));
-    state.counters["hits"] = static_cast<double>(hits) / static_cast<double>(state.iterations());
-}
-
-// The camera image's rays one at a time, in the same block order: what packets save.
-void GlintCameraSingle(benchmark::State& state) {
-    const PeerScene* peer = peer_of(state);
-    if (!peer) return state.SkipWithError("no ../shared/scenes/spd beside the checkout");
-    std::atomic<std::int64_t> hits = 0;
-    for (auto _ : state)
-        over_rays(peer->camera.size(), state.range(1), [&](std::size_t b, std::size_t e) {
-            std::int64_t found = 0;
-            for (std::size_t i = b; i < e; ++i)
-                found += peer->world->intersect(peer->camera[i]).found();
             hits += found;
         });
     label(state, *peer, state.iterations() * static_cast<std::int64_t>(peer->camera.size()));
@@ -455,27 +450,38 @@ void set_ray(RTCRay& out, const Ray& r, float t_far) {
     out.tnear = 0, out.tfar = t_far, out.mask = ~0u, out.flags = 0, out.time = 0;
 }
 
-void EmbreeIntersect1(benchmark::State& state) {
+// The rays of `rays` one at a time with rtcIntersect1.
+void embree_single(benchmark::State& state, std::vector<Ray> PeerScene::*rays) {
     const PeerScene* peer = peer_of(state);
     if (!peer) return state.SkipWithError("no ../shared/scenes/spd beside the checkout");
+    const std::vector<Ray>& given = peer->*rays;
     const RTCScene scene = embree_of(state).scene();
     std::atomic<std::int64_t> hits = 0;
     for (auto _ : state)
-        over_rays(peer->closest.size(), state.range(1), [&](std::size_t b, std::size_t e) {
+        over_rays(given.size(), state.range(1), [&](std::size_t b, std::size_t e) {
             RTCIntersectContext context;
             rtcInitIntersectContext(&context);
             std::int64_t found = 0;
             for (std::size_t i = b; i < e; ++i) {
                 RTCRayHit rh;
-                set_ray(rh.ray, peer->closest[i], kInfinity);
+                set_ray(rh.ray, given[i], kInfinity);
                 rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
                 rtcIntersect1(scene, &context, &rh);
                 found += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
             }
             hits += found;
         });
-    label(state, *peer, state.iterations() * static_cast<std::int64_t>(peer->closest.size()));
+    label(state, *peer, state.iterations() * static_cast<std::int64_t>(given.size()));
     state.counters["hits"] = static_cast<double>(hits) / static_cast<double>(state.iterations());
+}
+
+void EmbreeIntersect1(benchmark::State& state) {
+    embree_single(state, &PeerScene::closest);
+}
+
+// The camera image's rays one at a time with rtcIntersect1: Embree's own packet gain.
+void EmbreeCameraIntersect1(benchmark::State& state) {
+    embree_single(state, &PeerScene::camera);
 }
 
 // The camera image in packets of `kWidth` rays (16: a 4×4 block; 8: half of one).
@@ -521,30 +527,6 @@ void EmbreeIntersect8(benchmark::State& state) {
 }
 void EmbreeIntersect16(benchmark::State& state) {
     embree_packets<16, RTCRayHit16>(state, rtcIntersect16);
-}
-
-// The camera image's rays one at a time with rtcIntersect1: Embree's own packet gain.
-void EmbreeCameraIntersect1(benchmark::State& state) {
-    const PeerScene* peer = peer_of(state);
-    if (!peer) return state.SkipWithError("no ../shared/scenes/spd beside the checkout");
-    const RTCScene scene = embree_of(state).scene();
-    std::atomic<std::int64_t> hits = 0;
-    for (auto _ : state)
-        over_rays(peer->camera.size(), state.range(1), [&](std::size_t b, std::size_t e) {
-            RTCIntersectContext context;
-            rtcInitIntersectContext(&context);
-            std::int64_t found = 0;
-            for (std::size_t i = b; i < e; ++i) {
-                RTCRayHit rh;
-                set_ray(rh.ray, peer->camera[i], kInfinity);
-                rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-                rtcIntersect1(scene, &context, &rh);
-                found += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-            }
-            hits += found;
-        });
-    label(state, *peer, state.iterations() * static_cast<std::int64_t>(peer->camera.size()));
-    state.counters["hits"] = static_cast<double>(hits) / static_cast<double>(state.iterations());
 }
 
 // Embree offsets nothing: the shadow rays start where glint's do (spawned off the surface), and
