@@ -1,5 +1,6 @@
 // The small shared vocabulary: the closed sets' names (trace/names.h), where every enumerator has
-// one name, distinct from the others, and reading a name back gives the enumerator; and the one
+// one name, distinct from the others, reading a name back gives the enumerator, and all_values
+// lists every enumerator in order; and the one
 // timer (trace/stopwatch.h).
 #include "frame/frame.h"
 #include "preview/views.h"
@@ -22,8 +23,10 @@ template <class Enum> void expect_round_trip(std::size_t count) {
     for (std::size_t i = 0; i < count; ++i) {
         const Enum value = static_cast<Enum>(i);
         EXPECT_EQ(from_name<Enum>(name_of(value)), value) << names[i];
+        EXPECT_EQ(all_values<Enum>()[i], value) << names[i];
     }
     EXPECT_EQ(all_names<Enum>().size(), count);
+    EXPECT_EQ(all_values<Enum>().size(), count);
     EXPECT_FALSE(from_name<Enum>("").has_value());
     EXPECT_FALSE(from_name<Enum>("no such name").has_value());
 }
@@ -34,7 +37,7 @@ TEST(Names, EveryClosedSetNamesEachMemberOnceAndReadsItBack) {
     expect_round_trip<RasterMode>(2);
     expect_round_trip<Resolve>(2);
     expect_round_trip<Precision>(2);
-    expect_round_trip<AccelKind>(5);
+    expect_round_trip<AccelKind>(6);
     expect_round_trip<ShapeKind>(8);
     expect_round_trip<View>(kViewCount);
     EXPECT_EQ(name_of(ShapeKind::mesh), "mesh");
