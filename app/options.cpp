@@ -83,7 +83,7 @@ void FrameOptions::add_to(CLI::App& cmd, bool with_mode, bool with_gl) {
             ->capture_default_str()
             ->check(CLI::IsMember(all_names<GlBackend>()));
     cmd.add_option("--raster", raster,
-                   "Item buffer: mesh (tessellated) or proxy (exact, per-fragment)")
+                   "Item buffer: mesh (tessellated), proxy (exact, per-fragment) or auto (per object, whichever the cost model says draws faster)")
         ->capture_default_str()
         ->check(CLI::IsMember(all_names<RasterMode>()));
     cmd.add_option("--tess", tessellation, "Segments around curved outlines in mesh mode")
@@ -96,6 +96,10 @@ void FrameOptions::add_to(CLI::App& cmd, bool with_mode, bool with_gl) {
         ->check(CLI::IsMember(all_names<Resolve>()));
     cmd.add_option("--threads", threads, "Worker threads; default all cores")
         ->check(CLI::Range(1, 1024));
+    cmd.add_flag("--aa-sample-ids", aa_sample_ids,
+                 "Adaptive antialiasing in hybrid mode: also refine pixels whose NxN item-buffer "
+                 "samples name more than one object (finds objects thinner than a pixel; draws "
+                 "the NxN item buffer, and the image may then differ from ray mode's)");
 }
 
 FrameSettings FrameOptions::settings() const {
@@ -106,6 +110,7 @@ FrameSettings FrameOptions::settings() const {
     s.tessellation = tessellation;
     s.resolve = *from_name<Resolve>(resolve);
     s.threads = threads;
+    s.aa_sample_ids = aa_sample_ids;
     return s;
 }
 
@@ -113,7 +118,7 @@ std::string FrameOptions::describe() const {
     const FrameSettings s = settings();
     if (s.mode == Mode::ray) return std::string(name_of(s.mode));
     return std::string(name_of(s.mode)) + " (" + gl + ", " + raster +
-           (s.raster == RasterMode::mesh ? " tess " + std::to_string(tessellation) : "") + ", " +
+           (s.raster != RasterMode::proxy ? " tess " + std::to_string(tessellation) : "") + ", " +
            resolve + ")";
 }
 

@@ -44,10 +44,11 @@ struct SceneOptions {
 struct FrameOptions {
     std::string mode = "hybrid";
     std::string gl = "osmesa";
-    std::string raster = "mesh";
+    std::string raster = "auto";
     std::string resolve = "exact";
     int tessellation = kDefaultTessellation;
     int threads = 0;
+    bool aa_sample_ids = false;
 
     // `with_mode`: whether --mode is offered (compare runs both modes); `with_gl`: whether --gl
     // is (the preview's GL is its window's).

@@ -72,7 +72,7 @@ struct Setting {
         if (f.precision == Precision::f64) s.append(" ").append(name_of(f.precision));
         if (f.mode == Mode::hybrid) {
             s.append(" ").append(name_of(f.raster));
-            if (f.raster == RasterMode::mesh) s += " tess " + std::to_string(f.tessellation);
+            if (f.raster != RasterMode::proxy) s += " tess " + std::to_string(f.tessellation);
             if (f.resolve == Resolve::trust) s.append(" ").append(name_of(f.resolve));
         }
         if (max_depth != scene.render.max_depth) s += " depth " + std::to_string(max_depth);
@@ -92,7 +92,7 @@ struct Setting {
     }
 };
 
-// The sweep for one scene: each knob varied alone from the default setting (hybrid, mesh,
+// The sweep for one scene: each knob varied alone from the default setting (hybrid, auto raster,
 // tessellation 32, exact, the scene's depth and cut-off, automatic structure, full size).
 // The trace-only knobs (depth, cut-off, structure, size, precision) are swept in ray mode so
 // that nothing else changes the image. Keyed by label: a setting reached by two knobs runs once.
@@ -113,9 +113,11 @@ std::vector<std::pair<std::string, Setting>> sweep(const Scene& scene, int sampl
             s.frame.tessellation = tess;
             add(resolve == Resolve::exact ? "tessellation" : "resolve", s);
         }
-        s.frame.raster = RasterMode::proxy;
         s.frame.tessellation = kDefaultTessellation;
-        add("raster", s);
+        for (const RasterMode raster : {RasterMode::mesh, RasterMode::proxy}) {
+            s.frame.raster = raster;
+            add("raster", s);
+        }
     }
     for (int depth = 0; depth <= 8; ++depth) {
         Setting s = ray;
@@ -348,7 +350,7 @@ void write_csv(const std::vector<SceneResult>& results, const fs::path& path) {
             csv << sr.name << ',' << sr.scene.camera.width << ',' << sr.scene.camera.height << ','
                 << r.knobs << ",\"" << r.label << "\"," << name_of(f.precision) << ','
                 << name_of(f.mode) << ',' << (hybrid ? name_of(f.raster) : "") << ','
-                << (hybrid && f.raster == RasterMode::mesh ? std::to_string(f.tessellation) : "")
+                << (hybrid && f.raster != RasterMode::proxy ? std::to_string(f.tessellation) : "")
                 << ',' << (hybrid ? name_of(f.resolve) : "") << ',' << s.max_depth << ','
                 << s.min_reflectivity << ',' << (s.accel ? name_of(*s.accel) : "auto") << ','
                 << s.divisor << ',' << r.frame_seconds() << ',' << r.total_seconds() << ','

@@ -26,10 +26,21 @@ Frame render_frame(const World& world, const FrameSettings& settings,
         const RenderSettings& render = world.settings();
         if (render.samples == 1 || render.antialias == Antialias::adaptive)
             frame.items = timed(frame.times.raster, [&] { return items.draw(world); });
-        if (render.samples > 1)
+        // Adaptive without rule 3 traces its refined pixels' samples by ray: they are a few
+        // percent of the N×N grid, which would cost N² item buffers to draw.
+        const bool sample_grid = render.samples > 1 && (render.antialias == Antialias::uniform ||
+                                                        settings.aa_sample_ids);
+        if (sample_grid)
             frame.sample_items =
                 timed(frame.times.raster, [&] { return items.draw(world, false, render.samples); });
         frame.deviations = items.deviations();
+        frame.proxies = items.proxies(), frame.tessellated = items.tessellated();
+        // The resolve's bins (trace/primary_hits.h) count as resolving: trace/ builds them.
+        timed(frame.times.primary, [&] {
+            if (frame.items) bin_objects(world, frame.items->ids);
+            if (frame.sample_items) bin_objects(world, frame.sample_items->ids);
+            return 0;
+        });
         source.resolve = settings.resolve;
         if (frame.items) source.ids = &frame.items->ids;
         if (frame.sample_items) source.sample_ids = &frame.sample_items->ids;

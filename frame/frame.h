@@ -21,11 +21,16 @@ template <> struct EnumNames<Mode> { static constexpr auto names = name_table("h
 struct FrameSettings {
     Mode mode = Mode::hybrid;
     GlBackend gl = GlBackend::osmesa;
-    RasterMode raster = RasterMode::mesh;
+    RasterMode raster = RasterMode::automatic;
     int tessellation = kDefaultTessellation;
     Resolve resolve = Resolve::exact;
     int threads = 0;
     Precision precision = Precision::f32; // double: ray mode only, from a scene (below)
+    // Adaptive antialiasing in hybrid mode: also refine where the N×N item buffer's samples of a
+    // pixel name more than one object (trace/sampling.h's rule 3). It draws that N×N buffer, and
+    // the image may differ from ray mode's (by design: it finds what pixel centres miss), so it
+    // is off by default; without it adaptive hybrid equals ray mode byte for byte.
+    bool aa_sample_ids = false;
 };
 
 // The one result of a render, in either mode and either precision.
@@ -36,6 +41,7 @@ struct Frame {
     std::optional<ItemBufferResult> items;        // hybrid only: pixel centres (N = 1 or adaptive)
     std::optional<ItemBufferResult> sample_items; // hybrid with N > 1: the N×N sample grid
     std::vector<float> deviations;                // hybrid only: per object, world units
+    std::size_t proxies = 0, tessellated = 0;     // hybrid only: how the objects were drawn
     std::string gl_renderer;                      // hybrid only
 };
 

@@ -12,6 +12,7 @@
 #include <array>
 #include <cctype>
 #include <map>
+#include <optional>
 #include <string>
 #include <tuple>
 
@@ -362,7 +363,15 @@ void ItemBuffer::upload(const World& world, RasterMode mode, int tessellation) {
     // One proxy box per distinct object-space box, and one tessellation per distinct shape and
     // parameters (cones: per top radius; open or capped), shared by every object using it.
     std::map<std::array<float, 6>, std::size_t> proxies;
-    std::map<std::tuple<ShapeKind, float, bool>, std::pair<std::size_t, float>> shared;
+    // Tessellations are made when first asked for (auto mode reads their triangle counts), and
+    // uploaded when first drawn.
+    struct Shared {
+        Tessellation tessellation;
+        std::optional<std::size_t> geometry;
+    };
+    std::map<std::tuple<ShapeKind, float, bool>, Shared> shared;
+    proxies_ = tessellated_ = 0;
+    const PinholeCamera& camera = world.camera();
     for (std::uint32_t i = 0; i < world.objects().size(); ++i) {
         const Object& o = world.objects()[i];
         const ShapeTraits& traits = shape_traits(o.shape);
@@ -379,7 +388,31 @@ void ItemBuffer::upload(const World& world, RasterMode mode, int tessellation) {
             gl.add_instance(it->second, i);
             continue;
         }
-        if (mode == RasterMode::proxy && traits.in_proxy_shader) {
+        const ShapeKeys& keys = traits.keys;
+        const float top_radius = keys.top_radius ? float(o.params.top_radius) : 0.0f;
+        const bool open = keys.open && o.params.open;
+        const auto key = std::make_tuple(o.shape, top_radius, open);
+        const auto tessellation_of = [&]() -> Shared& {
+            auto it = shared.find(key);
+            if (it == shared.end())
+                it = shared.emplace(key, Shared{tessellate(o.shape, top_radius, tessellation, open),
+                                                std::nullopt})
+                         .first;
+            return it->second;
+        };
+        // Auto: the cost model, with the object's projected bounds (all of the image when they
+        // reach behind the eye).
+        const auto proxy_pays = [&] {
+            const std::optional<PixelRect> rect =
+                project_bounds(camera, o.bounds, camera.width(), camera.height());
+            const double pixels = rect ? rect->area(camera.width(), camera.height())
+                                       : double(camera.width()) * camera.height();
+            return proxy_is_cheaper(double(tessellation_of().tessellation.triangles.size()),
+                                    pixels);
+        };
+        if (traits.in_proxy_shader &&
+            (mode == RasterMode::proxy || (mode == RasterMode::automatic && proxy_pays()))) {
+            ++proxies_;
             const std::array<float, 6> box = proxy_box(o);
             auto [it, added] = proxies.emplace(box, 0);
             if (added) {
@@ -391,24 +424,17 @@ void ItemBuffer::upload(const World& world, RasterMode mode, int tessellation) {
             gl.items.push_back({i, it->second, true, false});
             continue;
         }
-        const ShapeKeys& keys = traits.keys;
-        const float top_radius = keys.top_radius ? float(o.params.top_radius) : 0.0f;
-        const bool open = keys.open && o.params.open;
-        const auto key = std::make_tuple(o.shape, top_radius, open);
-        auto it = shared.find(key);
-        if (it == shared.end()) {
-            const Tessellation t = tessellate(o.shape, top_radius, tessellation, open);
-            it = shared
-                     .emplace(key, std::make_pair(gl.add_geometry(t.vertices, t.triangles),
-                                                  t.max_deviation))
-                     .first;
-        }
-        gl.add_instance(it->second.first, i);
+        Shared& mesh = tessellation_of();
+        if (!mesh.geometry)
+            mesh.geometry =
+                gl.add_geometry(mesh.tessellation.vertices, mesh.tessellation.triangles);
+        gl.add_instance(*mesh.geometry, i);
+        ++tessellated_;
         // World-space bound: object deviation times ‖L‖_F ≥ ‖L‖₂, the most L stretches a length.
         const Mat3& l = o.transform.linear;
         const float stretch =
             std::sqrt(glm::dot(l[0], l[0]) + glm::dot(l[1], l[1]) + glm::dot(l[2], l[2]));
-        deviations_[i] = it->second.second * stretch;
+        deviations_[i] = mesh.tessellation.max_deviation * stretch;
     }
 }
 
@@ -533,6 +559,7 @@ ItemBufferResult ItemBuffer::draw(const World& world, bool flat_preview, int sam
         throw GlError("an item buffer of " + std::to_string(width) + "x" + std::to_string(height) +
                       " exceeds this GL's largest target side, " + std::to_string(limit));
     gl.sample_grid = samples;
+    ++draws_;
     gl.begin(width, height, flat_preview ? &background : nullptr);
     for (const Impl::DrawItem& item : gl.items)
         gl.draw_single(world, item, clip, near, flat_preview);

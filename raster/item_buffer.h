@@ -16,12 +16,29 @@
 namespace glint {
 
 // mesh: tessellated (conservative) primitives; proxy: each analytic primitive's bounding box,
-// whose fragments intersect the true primitive (exact ids, no tessellation error).
-enum class RasterMode { mesh, proxy };
+// whose fragments intersect the true primitive (exact ids, no tessellation error); automatic
+// ("auto"): per object, whichever the cost model below says is cheaper to draw.
+enum class RasterMode { mesh, proxy, automatic };
 
 template <> struct EnumNames<RasterMode> {
-    static constexpr auto names = name_table("mesh", "proxy");
+    static constexpr auto names = name_table("mesh", "proxy", "auto");
 };
+
+// The raster cost model (docs/ITEM_BUFFER.md, "Mesh or proxy"), in seconds on llvmpipe with two
+// cores: a triangle set up, and a pixel of the object's projected bounds filled, by a
+// tessellation (the mesh shader) and by a proxy box (the proxy shader, which intersects the ray
+// per fragment, front and back faces alike, and writes its depth).
+struct RasterCosts {
+    double triangle = 170e-9;
+    double mesh_pixel = 10e-9;
+    double proxy_pixel = 55e-9;
+};
+// Whether drawing an object as a proxy box (12 triangles) costs less than its tessellation of
+// `triangles` triangles, when its bounds cover `pixels` pixels of the image.
+inline bool proxy_is_cheaper(double triangles, double pixels, const RasterCosts& costs = {}) {
+    return 12 * costs.triangle + pixels * costs.proxy_pixel <
+           triangles * costs.triangle + pixels * costs.mesh_pixel;
+}
 
 struct ItemBufferResult {
     IdImage ids;
@@ -49,6 +66,11 @@ class ItemBuffer {
 
     // Per object, in world units: how far what was drawn may lie from the true surface.
     const std::vector<float>& deviations() const { return deviations_; }
+    // How many objects the last upload draws as proxy boxes, and as tessellations.
+    std::size_t proxies() const { return proxies_; }
+    std::size_t tessellated() const { return tessellated_; }
+    // Item buffers drawn since construction (draw() calls): what reuse saves is counted here.
+    std::size_t draws() const { return draws_; }
 
     // Draws one triangle (camera-relative positions) with the given id, for tests of the id
     // round trip beyond 2^24.
@@ -59,6 +81,7 @@ class ItemBuffer {
     struct Impl;
     std::unique_ptr<Impl> impl_;
     std::vector<float> deviations_;
+    std::size_t proxies_ = 0, tessellated_ = 0, draws_ = 0;
 };
 
 } // namespace glint

@@ -143,7 +143,7 @@ TEST(Antialiasing, TheAdaptiveRuleRefinesAroundKeysContrastAndMixedSampleIds) {
     r = refined(nullptr, 0.11f); // 26 ≤ floor(0.11·255) = 28
     EXPECT_EQ(std::count(r.begin(), r.end(), 1), 0);
 
-    IdImage ids{2 * w, 2 * h, std::vector<std::uint32_t>(4 * w * h, 3), {}};
+    IdImage ids{2 * w, 2 * h, std::vector<std::uint32_t>(4 * w * h, 3), {}, {}};
     ids.ids[(2 * 3 + 1) * ids.width + 2 * 4] = 5; // a sample of pixel (4, 3)
     r = refined(&ids, 0.5f);
     EXPECT_EQ(std::count(r.begin(), r.end(), 1), 1);

@@ -145,7 +145,7 @@ TEST(Cli, TradeoffWritesTheCsvAPlotPerSceneAndTheSummary) {
     EXPECT_NE(summary.find("| PSNR ≥ 40 dB |"), std::string::npos) << summary;
     EXPECT_NE(summary.find("](./default.svg)"), std::string::npos) << summary;
     EXPECT_NE(summary.find("](./default-antialiasing.svg)"), std::string::npos) << summary;
-    EXPECT_NE(summary.find("| hybrid mesh tess 32 4x4 adaptive 0.02 |"), std::string::npos)
+    EXPECT_NE(summary.find("| hybrid auto tess 32 4x4 adaptive 0.02 |"), std::string::npos)
         << summary;
     EXPECT_GT(fs::file_size(dir / "sweep" / "default-antialiasing.svg"), 0u);
 }

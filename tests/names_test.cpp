@@ -34,7 +34,7 @@ template <class Enum> void expect_round_trip(std::size_t count) {
 TEST(Names, EveryClosedSetNamesEachMemberOnceAndReadsItBack) {
     expect_round_trip<Mode>(2);
     expect_round_trip<GlBackend>(2);
-    expect_round_trip<RasterMode>(2);
+    expect_round_trip<RasterMode>(3);
     expect_round_trip<Resolve>(2);
     expect_round_trip<Precision>(2);
     expect_round_trip<AccelKind>(6);

@@ -2,7 +2,11 @@
 // are camera-relative).
 #pragma once
 
+#include "trace/bounds.h"
 #include "trace/ray.h"
+
+#include <algorithm>
+#include <optional>
 #include "trace/scene.h"
 
 namespace glint {
@@ -46,6 +50,44 @@ class PinholeCamera {
     int width_, height_;
     Vec3 forward_, right_, up_; // right_ and up_ pre-scaled by h·aspect and h
 };
+
+// Pixels [x0, x1] × [y0, y1] of an image (clamped to [−1, width] and [−1, height]; empty when
+// x0 > x1 or y0 > y1 once clamped to the image).
+struct PixelRect {
+    int x0, y0, x1, y1;
+
+    // How many of the image's pixels it covers.
+    double area(int width, int height) const {
+        const int w = std::min(x1, width - 1) - std::max(x0, 0) + 1;
+        const int h = std::min(y1, height - 1) - std::max(y0, 0) + 1;
+        return w > 0 && h > 0 ? static_cast<double>(w) * h : 0.0;
+    }
+};
+
+// The pixels of a width × height image of `camera`'s view (the N× grid of samples has N× its
+// size) whose centre rays may meet `bounds`: the rectangle around its corners' projections, one
+// pixel wider on each side for the rounding of the rays' directions (pixel X's ray is that of
+// X + 0.5). Nothing (unbounded) when a corner lies on or behind the eye's plane.
+inline std::optional<PixelRect> project_bounds(const PinholeCamera& camera, const Bounds& bounds,
+                                               int width, int height) {
+    const DVec3 r(camera.right_scaled()), u(camera.up_scaled()), f(camera.forward());
+    double u0 = kInfinity, u1 = -kInfinity, v0 = kInfinity, v1 = -kInfinity;
+    for (int corner = 0; corner < 8; ++corner) {
+        const DVec3 c(corner & 1 ? bounds.hi.x : bounds.lo.x, corner & 2 ? bounds.hi.y : bounds.lo.y,
+                      corner & 4 ? bounds.hi.z : bounds.lo.z);
+        const double z = glm::dot(c, f);
+        if (!(z > 0)) return std::nullopt;
+        const double pu = width * (1 + glm::dot(c, r) / (glm::dot(r, r) * z)) / 2;
+        const double pv = height * (1 - glm::dot(c, u) / (glm::dot(u, u) * z)) / 2;
+        u0 = std::min(u0, pu), u1 = std::max(u1, pu), v0 = std::min(v0, pv), v1 = std::max(v1, pv);
+    }
+    const auto clamp = [](double value, int limit) {
+        return static_cast<int>(std::clamp(value, -1.0, static_cast<double>(limit)));
+    };
+    return PixelRect{clamp(std::ceil(u0 - 0.5) - 1, width), clamp(std::ceil(v0 - 0.5) - 1, height),
+                     clamp(std::floor(u1 - 0.5) + 1, width),
+                     clamp(std::floor(v1 - 0.5) + 1, height)};
+}
 
 } // namespace GLINT_PRECISION
 } // namespace glint

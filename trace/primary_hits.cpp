@@ -1,26 +1,49 @@
 #include "trace/primary_hits.h"
 
+#include <algorithm>
+#include <cmath>
 #include <mutex>
+#include <optional>
 
 namespace glint {
 inline namespace GLINT_PRECISION {
 
 // The exact-mode argument. The id image comes from surfaces that enclose each object's true
-// surface (conservative tessellation, or exact proxies), so along a pixel's ray every object's
-// true hit lies at or beyond its rasterized hit, and the depth test kept the nearest rasterized
-// hit, at distance t_r. Hence no object's true surface lies before t_r, and the named object's
-// true hit t_k ≥ t_r. Any other object that is really first must therefore be hit in [t_r, t_k):
-// one any-hit query over that interval (excluding the named object) decides, and only when it
-// finds something is the pixel traced in full. t_r comes from a float depth buffer, so the
-// interval starts a relative 1e-3 earlier: far beyond the depth's rounding, and costing only a
-// slightly longer query, since anything found must still lie before t_k.
+// surface (conservative tessellation), or lie on it up to float rounding (proxies, planes,
+// triangles and meshes, whose drawn depth is their true one), so along a pixel's ray every
+// object's true hit lies at or beyond its drawn hit, up to that rounding, and the depth test kept
+// the nearest drawn hit, at distance t_r. Hence no object's true surface lies before t_r, and the
+// named object's true hit t_k ≥ t_r: any other object that is really first must be hit in
+// [t_r, t_k]. t_r comes from a float depth buffer (and a proxy's depth from the fragment shader's
+// float arithmetic), so the interval starts a relative kDepthSlack earlier: far beyond either
+// rounding, and it costs nothing to be generous, since what is found there must still be hit
+// before t_k.
 //
-// Coverage is conservative only up to rounding: at a pixel centre within float rounding of a
+// Which objects can be hit there is decided without a query through the structure:
+//   - the object's bounds, projected onto the image, must cover the pixel's bin (ScreenBins:
+//     a ray that meets an object meets its box, whose projection is the hull of its corners'),
+//   - and its range of view depth must reach the interval's, [t_r·(1 − slack), t_k] in view
+//     depth (t times the direction's forward component).
+// With exact depths (proxies, planes, flat triangles) the interval is only rounding wide, and
+// nearly every pixel has no object left to test; a tessellation widens it by its deviation. Each
+// object left is intersected exactly, with the tracer's own routine; only when one is hit before
+// t_k (or at t_k with a lower index: the tracer's tie rule) is the pixel traced in full from the
+// eye, so the hit is exactly ray mode's.
+//
+// Coverage is conservative only up to rounding: at a pixel centre within rounding of a
 // silhouette edge (a box face, a triangle, a proxy fragment's own intersection), GL and the
 // tracer may disagree on whether the edge's object covers it, and the id image may then name
-// the object behind. Such pixels lie where ids change, so exact mode traces every pixel whose
-// 8 neighbours do not all carry its id.
+// the object behind. Such pixels lie where ids change, so on an id boundary (a neighbour of the
+// 8 carries another id) the interval starts at the eye: every object of the bin that may lie
+// in front of t_k is tested. So does a pixel where nothing was drawn: an object thinner than a
+// pixel can be missed at a pixel centre by a proxy's float intersection (SPD's tree-11, whose
+// branches are cylinders under a pixel wide: 3 pixels of 262,144) with no id change around it
+// to say so; the bins keep this cheap where no object's projection reaches.
 constexpr Real kDepthSlack = 1e-3_r;
+
+// How much wider than their corners' the objects' depth ranges are kept: the pixel's view depth
+// is t times a cosine, both in float, so relative rounding of a few ulps; this is 1,000× that.
+constexpr double kDepthRangeSlack = 1e-4;
 
 namespace {
 
@@ -35,33 +58,119 @@ bool on_id_boundary(const IdImage& ids, int x, int y) {
 
 } // namespace
 
-Hit resolve_pixel(const World& world, const IdImage& ids, Resolve resolve, int x, int y,
-                  const Ray& ray, PrimaryStats& stats) {
-    const PinholeCamera& camera = world.camera();
+void bin_objects(const World& world, IdImage& ids) {
+    ScreenBins& bins = ids.bins;
+    constexpr int k = ScreenBins::kSize;
+    bins.columns = (ids.width + k - 1) / k, bins.rows = (ids.height + k - 1) / k;
+    const std::vector<Object>& objects = world.objects();
+    const auto count = static_cast<std::uint32_t>(objects.size());
+    bins.near.assign(count, -kInfinity);
+    bins.far.assign(count, kInfinity);
+    bins.everywhere.clear();
+    std::vector<std::optional<PixelRect>> rects(count);
+    std::vector<std::uint32_t> per_bin(static_cast<std::size_t>(bins.columns) * bins.rows + 1, 0);
+    const DVec3 forward(world.camera().forward());
+    for (std::uint32_t i = 0; i < count; ++i) {
+        const Object& o = objects[i];
+        if (!o.bounded) {
+            bins.everywhere.push_back(i);
+            continue;
+        }
+        double near = kInfinity, far = -kInfinity;
+        for (int corner = 0; corner < 8; ++corner) {
+            const DVec3 c(corner & 1 ? o.bounds.hi.x : o.bounds.lo.x,
+                          corner & 2 ? o.bounds.hi.y : o.bounds.lo.y,
+                          corner & 4 ? o.bounds.hi.z : o.bounds.lo.z);
+            near = std::min(near, glm::dot(c, forward)), far = std::max(far, glm::dot(c, forward));
+        }
+        bins.near[i] = static_cast<Real>(near - kDepthRangeSlack * std::abs(near));
+        bins.far[i] = static_cast<Real>(far + kDepthRangeSlack * std::abs(far));
+        rects[i] = project_bounds(world.camera(), o.bounds, ids.width, ids.height);
+        if (!rects[i]) bins.everywhere.push_back(i);
+    }
+    // Two passes over the rectangles: count per bin, then fill, objects in index order (the
+    // rectangles are clamped to the image; one wholly off it has no bin).
+    const auto for_each_bin = [&](const PixelRect& r, auto&& body) {
+        const int x0 = std::max(r.x0, 0), x1 = std::min(r.x1, ids.width - 1);
+        const int y0 = std::max(r.y0, 0), y1 = std::min(r.y1, ids.height - 1);
+        if (x0 > x1 || y0 > y1) return; // off the image
+        for (int by = y0 / k; by <= y1 / k; ++by)
+            for (int bx = x0 / k; bx <= x1 / k; ++bx)
+                body(static_cast<std::size_t>(by) * bins.columns + bx);
+    };
+    for (std::uint32_t i = 0; i < count; ++i)
+        if (objects[i].bounded && rects[i])
+            for_each_bin(*rects[i], [&](std::size_t bin) { ++per_bin[bin + 1]; });
+    for (std::size_t b = 1; b < per_bin.size(); ++b) per_bin[b] += per_bin[b - 1];
+    bins.first = per_bin;
+    bins.objects.resize(per_bin.back());
+    for (std::uint32_t i = 0; i < count; ++i)
+        if (objects[i].bounded && rects[i])
+            for_each_bin(*rects[i], [&](std::size_t bin) { bins.objects[per_bin[bin]++] = i; });
+}
+
+namespace {
+
+// resolve_pixel, with the camera ray made by make_ray() only where it is needed: a pixel where
+// nothing was drawn and no neighbour differs needs none.
+template <class MakeRay>
+Hit resolve_with(const World& world, const IdImage& ids, Resolve resolve, int x, int y,
+                 const MakeRay& make_ray, PrimaryStats& stats) {
     const std::size_t p = static_cast<std::size_t>(y) * ids.width + x;
-    if (resolve == Resolve::exact && on_id_boundary(ids, x, y)) {
-        ++stats.edges;
+    const bool exact = resolve == Resolve::exact;
+    const bool edge = exact && on_id_boundary(ids, x, y);
+    if (edge) ++stats.edges;
+    const std::uint32_t id = ids.ids[p];
+    if (id == 0 && !exact) return {}; // nothing drawn: trust says nothing is there
+    const Ray ray = make_ray();
+    const auto trace = [&] {
+        ++stats.traced;
         return world.intersect(ray);
-    }
-    if (ids.ids[p] == 0) return {}; // nothing drawn: enclosing surfaces cover every true one
-    const std::uint32_t object = ids.ids[p] - 1;
-    ++stats.exact_intersections;
-    Hit hit = world.intersect_one(object, ray);
-    if (!hit.found()) { // inside the enclosing surface but outside the true one
-        ++stats.fallbacks;
-        return world.intersect(ray);
-    }
-    if (resolve == Resolve::exact) {
-        const Real t_raster = ids.view_depth[p] / glm::dot(ray.direction, camera.forward());
-        const Real t_start = glm::max(0.0_r, t_raster * (1 - kDepthSlack));
-        if (t_start < hit.t && world.occluded({ray.origin + t_start * ray.direction, ray.direction},
-                                              hit.t - t_start, object)) {
-            // Traced in full from the eye, so the hit is exactly ray mode's.
-            const Hit nearer = world.intersect(ray, hit.t);
-            if (nearer.found()) ++stats.corrected, hit = nearer;
+    };
+    const std::uint32_t object = id - 1; // kNoObject for the background
+    Hit hit;
+    if (id != 0) {
+        ++stats.exact_intersections;
+        hit = world.intersect_one(object, ray);
+        if (!hit.found()) { // inside the enclosing surface but outside the true one
+            ++stats.fallbacks;
+            return trace();
         }
     }
-    return hit;
+    if (!exact) return hit;
+    const ScreenBins& bins = ids.bins;
+    if (bins.empty()) return trace();
+    const Real cosine = glm::dot(ray.direction, world.camera().forward());
+    const Real z_hit = hit.found() ? hit.t * cosine : kInfinity;
+    const Real z_from = edge || id == 0 ? -kInfinity : ids.view_depth[p] * (1 - kDepthSlack);
+    const Real limit = hit.found() ? std::nextafter(hit.t, kInfinity) : kInfinity;
+    bool tested = false;
+    const auto in_front = [&](std::uint32_t other) {
+        if (other == object || bins.near[other] > z_hit || bins.far[other] < z_from) return false;
+        tested = true;
+        ++stats.tests;
+        const Hit h = world.intersect_one(other, ray, limit);
+        return h.found() && (h.t < hit.t || (h.t == hit.t && other < object));
+    };
+    const std::size_t bin = static_cast<std::size_t>(y / ScreenBins::kSize) * bins.columns +
+                            static_cast<std::size_t>(x / ScreenBins::kSize);
+    bool found = false;
+    for (const std::uint32_t other : bins.everywhere)
+        if ((found = in_front(other))) break;
+    for (std::uint32_t e = bins.first[bin]; !found && e < bins.first[bin + 1]; ++e)
+        found = in_front(bins.objects[e]);
+    if (tested) ++stats.checked;
+    if (!found) return hit;
+    const Hit nearer = trace();
+    if (nearer.object != hit.object) ++stats.corrected;
+    return nearer;
+}
+
+} // namespace
+
+Hit resolve_pixel(const World& world, const IdImage& ids, Resolve resolve, int x, int y,
+                  const Ray& ray, PrimaryStats& stats) {
+    return resolve_with(world, ids, resolve, x, y, [&] { return ray; }, stats);
 }
 
 std::vector<Hit> primary_hits(const World& world, const PrimarySource& source, PrimaryStats& stats,
@@ -92,8 +201,9 @@ std::vector<Hit> primary_hits(const World& world, const PrimarySource& source, P
         }
         for (int y = y0; y < y1; ++y)
             for (int x = x0; x < x1; ++x)
-                hits[static_cast<std::size_t>(y) * width + x] =
-                    primary_hit(world, source, x, y, camera.ray(x, y), local);
+                hits[static_cast<std::size_t>(y) * width + x] = resolve_with(
+                    world, *source.ids, source.resolve, x, y, [&] { return camera.ray(x, y); },
+                    local);
         const std::lock_guard lock(stats_mutex);
         stats += local;
     });

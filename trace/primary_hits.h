@@ -22,22 +22,48 @@ template <> struct EnumNames<Resolve> {
 
 inline namespace GLINT_PRECISION {
 
+// Which objects the rays of each 8×8 bin of an id image's pixels may meet, from each object's
+// bounds projected onto the image (bin_objects), and each object's range of view depth (distance
+// along the camera's forward axis). The exact resolve tests only these, and of them only those
+// whose depth range reaches the interval it must check (primary_hits.cpp).
+struct ScreenBins {
+    static constexpr int kSize = 8; // pixels on a side of a bin
+    int columns = 0, rows = 0;
+    std::vector<std::uint32_t> first;      // per bin, its first entry in `objects` (+ one end)
+    std::vector<std::uint32_t> objects;    // bin by bin, in index order
+    std::vector<std::uint32_t> everywhere; // unbounded, or reaching behind the eye: every bin
+    std::vector<Real> near, far;           // per object, widened; ∓infinity for planes
+
+    bool empty() const { return first.empty(); }
+};
+
 // Per pixel, row-major, top row first.
 struct IdImage {
     int width = 0, height = 0;
     std::vector<std::uint32_t> ids; // object index + 1; 0 where nothing was drawn
     std::vector<float> view_depth;  // distance along the camera's forward axis of what was drawn
+    ScreenBins bins;                // bin_objects(); without them exact resolve traces in full
 };
+
+// Fills ids.bins for `world`'s objects seen from its camera at the id image's size (the N× grid
+// of samples has N× the camera's: pixel X's centre is the ray of X + 0.5, as for the camera).
+void bin_objects(const World& world, IdImage& ids);
 
 struct PrimaryStats {
     std::uint64_t exact_intersections = 0; // pixels resolved by intersecting one named object
     std::uint64_t fallbacks = 0; // the named object was missed: the pixel was fully traced
     std::uint64_t corrected = 0; // exact mode found a nearer object than the named one
-    std::uint64_t edges = 0;     // exact mode: on an id boundary, so traced in full
+    std::uint64_t edges = 0;     // exact mode: on an id boundary, so checked against every
+                                 // object in its bin that may lie in front
+    std::uint64_t checked = 0;   // exact mode: pixels where some other object survived the bins'
+                                 // culls and was intersected
+    std::uint64_t tests = 0;     // those intersections, all pixels together
+    std::uint64_t traced = 0;    // pixels traced in full (fallbacks, and where a test hit)
 
     PrimaryStats& operator+=(const PrimaryStats& other) {
         exact_intersections += other.exact_intersections, fallbacks += other.fallbacks;
         corrected += other.corrected, edges += other.edges;
+        checked += other.checked, tests += other.tests, traced += other.traced;
         return *this;
     }
 };
