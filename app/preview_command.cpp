@@ -4,6 +4,7 @@
 #include "preview/preview.h"
 #include "raster/window.h"
 
+#include <cctype>
 #include <iostream>
 
 namespace glint {
@@ -15,6 +16,7 @@ struct PreviewArgs {
     int frames = 0;
     std::string screenshot;
     double spin = 0;
+    std::string keys;
     std::string view = "final";
 };
 
@@ -22,6 +24,7 @@ PreviewOptions prepare(const PreviewArgs& args) {
     PreviewOptions options;
     options.frames = args.frames;
     options.spin = args.spin;
+    options.keys = args.keys;
     options.screenshot = args.screenshot;
     if (!options.screenshot.empty()) {
         if (options.screenshot.extension() != ".png")
@@ -30,6 +33,13 @@ PreviewOptions prepare(const PreviewArgs& args) {
     }
     if (args.spin != 0 && args.frames == 0)
         throw UsageError("--spin: orbits during the --frames N scripted frames; give --frames");
+    if (!args.keys.empty() && args.frames == 0)
+        throw UsageError("--keys " + args.keys +
+                         ": pressed during the --frames N scripted frames; give --frames");
+    for (const char key : args.keys)
+        if (!std::isgraph(static_cast<unsigned char>(key)))
+            throw UsageError("--keys " + args.keys +
+                             ": keys are printable characters, one a frame (e.g. \"[]M\")");
     options.scene = args.scene.load();
     options.scene_name = args.scene.scene_path().string();
     options.accel = args.scene.accel_kind();
@@ -77,6 +87,9 @@ Command add_preview_command(CLI::App& app) {
                     "Scripted: orbit this many degrees each of the --frames frames (to measure "
                     "responsiveness while the trace restarts)")
         ->check(CLI::Range(-360.0, 360.0));
+    cmd->add_option("--keys", args->keys,
+                    "Scripted: press these keys, one a frame from the second (e.g. \"[],.\": "
+                    "depth and cut-off; H lists the keys)");
     cmd->add_option("--view", args->view,
                     "The view shown first: final, items (item buffer), depth, normals, "
                     "difference (ray vs hybrid) or reflections (reflection depth)")

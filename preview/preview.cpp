@@ -16,7 +16,9 @@
 #include <GLFW/glfw3.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
+#include <optional>
 #include <cstdio>
 #include <iostream>
 
@@ -30,8 +32,9 @@ const std::string_view kPreviewKeys = R"(glint preview keys
   1 … 6             view: final image, item buffer, depth, normals, ray vs hybrid, reflection depth
   V                 next view
   [ ]               max reflection depth − / +
+  , .               reflection cut-off (min reflectivity) ÷2 / ×2
   - =               tessellation ÷2 / ×2 (mesh raster mode)
-  M                 raster mode: mesh / proxy
+  M                 raster mode: mesh / proxy / auto
   E                 resolve mode: exact / trust
   T                 tracer: hybrid (item buffer) / ray
   P                 save a screenshot PNG
@@ -102,6 +105,9 @@ class Preview {
     View view_ = View::final;
     ItemBuffer items_;
     bool upload_needed_ = true, dirty_ = true;
+    // The camera the item buffer was drawn from: settings that leave it (depth, cut-off, resolve,
+    // mode, views) reuse the item buffer; a new camera or upload draws it again.
+    std::optional<Camera> drawn_camera_;
     std::shared_ptr<const IdImage> ids_;
     Image flat_, derived_; // derived_: the item-buffer or depth view, made when shown
     std::shared_ptr<RefineJob> job_;
@@ -157,7 +163,7 @@ std::string Preview::describe_settings() const {
     std::string text(name_of(frame_.mode));
     if (frame_.mode == Mode::hybrid) {
         text.append(" ").append(name_of(frame_.raster));
-        if (frame_.raster == RasterMode::mesh)
+        if (frame_.raster != RasterMode::proxy)
             text += " tess " + std::to_string(frame_.tessellation);
         text.append(" ").append(name_of(frame_.resolve));
     }
@@ -194,6 +200,14 @@ void Preview::on_key(int key) {
             scene_.render.max_depth + (key == GLFW_KEY_RIGHT_BRACKET ? 1 : -1), 0, kMaxDepth);
         dirty_ = true;
         return;
+    case GLFW_KEY_COMMA:
+    case GLFW_KEY_PERIOD: { // halving from 1e-4 reaches 0, doubling from 0 starts at 1e-4
+        float& cutoff = scene_.render.min_reflectivity;
+        cutoff = key == GLFW_KEY_PERIOD ? std::min(1.0f, std::max(cutoff * 2, 1e-4f))
+                                        : (cutoff / 2 < 1e-4f ? 0.0f : cutoff / 2);
+        dirty_ = true;
+        return;
+    }
     case GLFW_KEY_MINUS:
     case GLFW_KEY_EQUAL:
         frame_.tessellation =
@@ -202,7 +216,8 @@ void Preview::on_key(int key) {
         upload_needed_ = dirty_ = true;
         return;
     case GLFW_KEY_M:
-        frame_.raster = frame_.raster == RasterMode::mesh ? RasterMode::proxy : RasterMode::mesh;
+        frame_.raster = static_cast<RasterMode>((static_cast<int>(frame_.raster) + 1) %
+                                                all_values<RasterMode>().size());
         upload_needed_ = dirty_ = true;
         return;
     case GLFW_KEY_E:
@@ -266,13 +281,20 @@ void Preview::restart() {
                     : std::make_shared<const World>(scene, options_.accel);
     log_.worlds.push_back(world_watch.milliseconds());
     const std::shared_ptr<const World>& world = world_;
-    if (upload_needed_) {
-        items_.upload(*world, frame_.raster, frame_.tessellation);
+    const Camera& c = scene.camera;
+    const bool moved = !drawn_camera_ || drawn_camera_->eye != c.eye ||
+                       drawn_camera_->look_at != c.look_at || drawn_camera_->up != c.up ||
+                       drawn_camera_->fov_y != c.fov_y || drawn_camera_->width != c.width ||
+                       drawn_camera_->height != c.height;
+    if (upload_needed_ || moved) {
+        if (upload_needed_) items_.upload(*world, frame_.raster, frame_.tessellation);
         upload_needed_ = false;
+        ItemBufferResult drawn = items_.draw(*world, true);
+        bin_objects(*world, drawn.ids);
+        flat_ = std::move(drawn.flat);
+        ids_ = std::make_shared<const IdImage>(std::move(drawn.ids));
+        drawn_camera_ = c;
     }
-    ItemBufferResult drawn = items_.draw(*world, true);
-    flat_ = std::move(drawn.flat);
-    ids_ = std::make_shared<const IdImage>(std::move(drawn.ids));
     job_ = std::make_shared<RefineJob>(world, frame_.mode == Mode::hybrid ? ids_ : nullptr,
                                        frame_.resolve, view_ == View::difference);
     refiner_.start(job_);
@@ -433,6 +455,10 @@ int Preview::run() {
             glfwWaitEvents();
         const Stopwatch frame_watch;
         next_frame = Clock::now() + period;
+        if (frames >= 1 && static_cast<std::size_t>(frames - 1) < options_.keys.size()) {
+            const char key = options_.keys[static_cast<std::size_t>(frames - 1)];
+            on_key(std::toupper(static_cast<unsigned char>(key))); // GLFW's codes are ASCII
+        }
         if (options_.spin != 0 && frames < options_.frames) {
             camera_.orbit(options_.spin, 0);
             dirty_ = true;
@@ -447,7 +473,8 @@ int Preview::run() {
         complete = upload_tiles() && job_ && job_->finished();
         present();
         ++frames;
-        const bool done = options_.scripted() && frames >= options_.frames && complete;
+        const bool done = options_.scripted() && frames >= options_.frames &&
+                          static_cast<std::size_t>(frames) > options_.keys.size() && complete;
         // The first frame puts the first image on screen: part of start-up.
         (frames == 1 ? log_.first_frame : log_.frames.emplace_back()) = frame_watch.milliseconds();
         update_title(complete);
@@ -470,6 +497,7 @@ int Preview::run() {
         if (done) break;
     }
     log_.print();
+    std::printf("item buffers drawn: %zu\n", items_.draws());
     if (job_ && job_->finished())
         std::printf("last trace: %dx%d in %.2f s on %d threads\n", job_->width(), job_->height(),
                     job_->seconds(), refiner_.threads());

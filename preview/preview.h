@@ -25,6 +25,8 @@ struct PreviewOptions {
     int frames = 0;
     std::filesystem::path screenshot;
     double spin = 0;
+    // Scripted: keys pressed one a frame from the second frame on, as their characters ('[', 'M').
+    std::string keys;
 
     bool scripted() const { return frames > 0 || !screenshot.empty(); }
 };

@@ -85,5 +85,36 @@ TEST(Preview, EveryViewOfEveryShippedSceneShowsWhatItShould) {
     }
 }
 
+// Issue 19's reuse: settings that leave the camera (depth, cut-off) restart the trace on the item
+// buffer already drawn; a raster change uploads and draws again. The count is the preview's own
+// (ItemBuffer::draws), printed when it exits.
+std::size_t item_buffer_draws(const std::string& keys) {
+    PreviewOptions options;
+    options.scene = shipped("default");
+    options.scene.camera.width = 160, options.scene.camera.height = 120;
+    options.scene.render.samples = 1;
+    options.scene_name = "default.json";
+    options.frames = 2;
+    options.keys = keys;
+    ::testing::internal::CaptureStdout();
+    const int code = run_preview(options);
+    const std::string out = ::testing::internal::GetCapturedStdout();
+    EXPECT_EQ(code, 0);
+    const std::size_t at = out.find("item buffers drawn: ");
+    if (at == std::string::npos) {
+        ADD_FAILURE() << "no draw count in: " << out;
+        return 0;
+    }
+    return std::stoul(out.substr(at + 20));
+}
+
+TEST(Preview, ChangingDepthOrCutOffDrawsNoItemBuffer) {
+    EXPECT_EQ(item_buffer_draws(""), 1u);
+    EXPECT_EQ(item_buffer_draws("[[],.,"), 1u); // depth − − +, cut-off ÷2 ×2 ÷2
+    EXPECT_EQ(item_buffer_draws("E2T1"), 1u);   // resolve, a view, the tracer, the final view
+    EXPECT_EQ(item_buffer_draws("[M]"), 2u);    // the raster mode: a new upload, a new draw
+    EXPECT_EQ(item_buffer_draws("R=-"), 3u);    // reset (camera unchanged), tessellation twice
+}
+
 } // namespace
 } // namespace glint
