@@ -28,6 +28,13 @@ Command add_info_command(CLI::App& app) {
                                     std::string(name_of(backend)).c_str(), e.what());
                     }
                 }
+                const std::vector<EglDevice> devices = egl_devices();
+                std::printf("EGL devices: %zu%s\n", devices.size(),
+                            devices.empty() ? " (none enumerated)" : "");
+                for (std::size_t i = 0; i < devices.size(); ++i)
+                    std::printf("  %zu: %s%s\n", i, devices[i].name.c_str(),
+                                devices[i].software ? " (software: Mesa llvmpipe)"
+                                                    : " (hardware: --gl egl draws here)");
                 return 0;
             }};
 }

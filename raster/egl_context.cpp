@@ -1,5 +1,6 @@
-// EGL with no display (EGL_MESA_platform_surfaceless): the same Mesa llvmpipe here, a GPU's
-// driver elsewhere, and the way glint keeps working once OSMesa is gone (Mesa 25.1+).
+// EGL with no display: on the first hardware device EGL enumerates (EGL_EXT_platform_device: a
+// GPU's driver), else on Mesa's surfaceless platform (EGL_MESA_platform_surfaceless: llvmpipe,
+// as here), and the way glint keeps working once OSMesa is gone (Mesa 25.1+).
 #include "raster/gl_context.h"
 
 #include <glad/gl.h>
@@ -35,18 +36,54 @@ void keep_dri_drivers_loaded() {
 }
 #endif
 
+template <class Function> Function egl_function(const char* name) {
+    return reinterpret_cast<Function>(eglGetProcAddress(name));
+}
+
+struct Device {
+    EGLDeviceEXT handle;
+    EglDevice facts;
+};
+
+std::vector<Device> enumerate_devices() {
+    const auto query_devices = egl_function<PFNEGLQUERYDEVICESEXTPROC>("eglQueryDevicesEXT");
+    const auto query_string =
+        egl_function<PFNEGLQUERYDEVICESTRINGEXTPROC>("eglQueryDeviceStringEXT");
+    EGLint count = 0;
+    if (!query_devices || !query_string || !query_devices(0, nullptr, &count) || count <= 0)
+        return {};
+    std::vector<EGLDeviceEXT> handles(static_cast<std::size_t>(count));
+    if (!query_devices(count, handles.data(), &count)) return {};
+    handles.resize(static_cast<std::size_t>(count));
+    std::vector<Device> devices;
+    for (EGLDeviceEXT handle : handles) {
+        Device d{handle, {}};
+        const char* extensions = query_string(handle, EGL_EXTENSIONS);
+        d.facts.extensions = extensions ? extensions : "";
+        d.facts.software = d.facts.extensions.find("EGL_MESA_device_software") != std::string::npos;
+        if (d.facts.extensions.find("EGL_EXT_device_drm") != std::string::npos)
+            if (const char* file = query_string(handle, EGL_DRM_DEVICE_FILE_EXT)) d.facts.name = file;
+        if (d.facts.name.empty()) d.facts.name = "no DRM device file";
+        devices.push_back(std::move(d));
+    }
+    return devices;
+}
+
 class EglContext final : public GlContext {
   public:
-    EglContext() {
-        const auto get_platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
-            eglGetProcAddress("eglGetPlatformDisplayEXT"));
+    // On `device` (EGL_PLATFORM_DEVICE_EXT), or without one on Mesa's surfaceless platform.
+    explicit EglContext(EGLDeviceEXT device) {
+        const auto get_platform_display =
+            egl_function<PFNEGLGETPLATFORMDISPLAYEXTPROC>("eglGetPlatformDisplayEXT");
         if (!get_platform_display) throw GlError("EGL lacks eglGetPlatformDisplayEXT");
-        display_ =
-            get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+        display_ = device ? get_platform_display(EGL_PLATFORM_DEVICE_EXT, device, nullptr)
+                          : get_platform_display(EGL_PLATFORM_SURFACELESS_MESA,
+                                                 EGL_DEFAULT_DISPLAY, nullptr);
         EGLint major = 0, minor = 0;
         if (display_ == EGL_NO_DISPLAY || !eglInitialize(display_, &major, &minor))
-            throw GlError(
-                "EGL could not open a surfaceless display (Mesa's EGL_MESA_platform_surfaceless)");
+            throw GlError(device ? "EGL could not open a display on the device"
+                                 : "EGL could not open a surfaceless display (Mesa's "
+                                   "EGL_MESA_platform_surfaceless)");
 #ifdef GLINT_SANITIZE
         keep_dri_drivers_loaded();
 #endif
@@ -93,7 +130,21 @@ class EglContext final : public GlContext {
 } // namespace
 
 std::unique_ptr<GlContext> make_egl_context() {
-    return std::make_unique<EglContext>();
+    for (const Device& device : enumerate_devices()) {
+        if (device.facts.software) continue;
+        try {
+            return std::make_unique<EglContext>(device.handle);
+        } catch (const GlError&) {
+            // A device that cannot make a 3.3 core context: the next, or surfaceless below.
+        }
+    }
+    return std::make_unique<EglContext>(nullptr);
+}
+
+std::vector<EglDevice> egl_devices() {
+    std::vector<EglDevice> facts;
+    for (Device& device : enumerate_devices()) facts.push_back(std::move(device.facts));
+    return facts;
 }
 
 } // namespace glint

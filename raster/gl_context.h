@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace glint {
 
@@ -44,7 +45,17 @@ class GlContext {
     std::string renderer_, version_;
 };
 
-// Creates and makes current a context of the given kind. Throws GlError.
+// Creates and makes current a context of the given kind. Throws GlError. EGL takes the first
+// hardware device it enumerates (EGL_EXT_platform_device), and otherwise, or when that device
+// cannot make a context, Mesa's surfaceless platform (llvmpipe).
 std::unique_ptr<GlContext> make_context(GlBackend backend);
+
+// The devices EGL enumerates (EGL_EXT_device_enumeration), in its order; empty where EGL cannot.
+struct EglDevice {
+    std::string name;     // its DRM device file where EGL_EXT_device_drm names one
+    bool software = false; // EGL_MESA_device_software: Mesa's llvmpipe, not a GPU
+    std::string extensions;
+};
+std::vector<EglDevice> egl_devices();
 
 } // namespace glint
