@@ -88,17 +88,30 @@ void print_comparison(const CompareArgs& args, const Comparison& c) {
     std::printf("primary visibility, hybrid/ray:  %.3f  (raster + read-back + resolve vs. casting "
                 "primary rays)\n",
                 c.primary_ratio);
+    std::printf("resolve / primary rays:          %.3f  (the exact resolve against a full primary "
+                "trace)\n",
+                h.primary / r.primary);
     std::printf(
         "whole frame, hybrid/ray:         %.3f  (including context, shaders and upload)\n\n",
         c.frame_ratio);
+    std::printf("drawn as:            %zu proxies, %zu tessellations (the rest: planes, "
+                "triangles, meshes)\n",
+                c.hybrid.proxies, c.hybrid.tessellated);
     std::printf("id agreement:        %.4f%% of pixels name the same primary object\n",
                 100 * c.agreement);
     std::printf("fallback pixels:     %llu (named object missed; traced in full)\n",
                 static_cast<unsigned long long>(stats.fallbacks));
     std::printf("corrected pixels:    %llu (exact resolve found a nearer object)\n",
                 static_cast<unsigned long long>(stats.corrected));
-    std::printf("edge pixels:         %llu (exact resolve traced them in full: ids change there)\n",
+    std::printf("edge pixels:         %llu (ids change there: every object of the bin in front "
+                "was a candidate)\n",
                 static_cast<unsigned long long>(stats.edges));
+    std::printf("checked pixels:      %llu (some other object survived the bins' culls; %.3f "
+                "tests a pixel)\n",
+                static_cast<unsigned long long>(stats.checked),
+                static_cast<double>(stats.tests) / static_cast<double>(c.ray.result.ids.size()));
+    std::printf("traced pixels:       %llu (traced in full: fallbacks, and a test hit in front)\n",
+                static_cast<unsigned long long>(stats.traced));
     if (std::isinf(c.diff.psnr_db))
         std::printf("PSNR:                inf (identical images)\n");
     else
@@ -128,6 +141,12 @@ nlohmann::ordered_json comparison_json(const CompareArgs& args, const Comparison
         {"fallback_pixels", stats.fallbacks},
         {"corrected_pixels", stats.corrected},
         {"edge_pixels", stats.edges},
+        {"checked_pixels", stats.checked},
+        {"candidate_tests", stats.tests},
+        {"traced_pixels", stats.traced},
+        {"resolve_ratio", h.primary / r.primary},
+        {"proxy_objects", c.hybrid.proxies},
+        {"tessellated_objects", c.hybrid.tessellated},
         {"psnr_db", std::isinf(c.diff.psnr_db) ? nlohmann::ordered_json(nullptr)
                                                : nlohmann::ordered_json(c.diff.psnr_db)},
         {"max_abs_error", c.diff.max_abs_error},

@@ -130,6 +130,11 @@ nlohmann::ordered_json stats_json(const RenderReport& r) {
             {"fallbacks", p.fallbacks},
             {"corrected", p.corrected},
             {"edges", p.edges},
+            {"checked", p.checked},
+            {"tests", p.tests},
+            {"traced", p.traced},
+            {"proxy_objects", r.frame.proxies},
+            {"tessellated_objects", r.frame.tessellated},
             {"max_deviation",
              deviations.empty() ? 0.0f : *std::max_element(deviations.begin(), deviations.end())}};
     }
