@@ -83,7 +83,8 @@ void FrameOptions::add_to(CLI::App& cmd, bool with_mode, bool with_gl) {
             ->capture_default_str()
             ->check(CLI::IsMember(all_names<GlBackend>()));
     cmd.add_option("--raster", raster,
-                   "Item buffer: mesh (tessellated), proxy (exact, per-fragment) or auto (per object, whichever the cost model says draws faster)")
+                   "Item buffer: mesh (tessellated), proxy (exact, per-fragment) or auto (per "
+                   "object, whichever the cost model says draws faster)")
         ->capture_default_str()
         ->check(CLI::IsMember(all_names<RasterMode>()));
     cmd.add_option("--tess", tessellation, "Segments around curved outlines in mesh mode")

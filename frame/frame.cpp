@@ -28,8 +28,8 @@ Frame render_frame(const World& world, const FrameSettings& settings,
             frame.items = timed(frame.times.raster, [&] { return items.draw(world); });
         // Adaptive without rule 3 traces its refined pixels' samples by ray: they are a few
         // percent of the N×N grid, which would cost N² item buffers to draw.
-        const bool sample_grid = render.samples > 1 && (render.antialias == Antialias::uniform ||
-                                                        settings.aa_sample_ids);
+        const bool sample_grid = render.samples > 1 &&
+                                 (render.antialias == Antialias::uniform || settings.aa_sample_ids);
         if (sample_grid)
             frame.sample_items =
                 timed(frame.times.raster, [&] { return items.draw(world, false, render.samples); });

@@ -18,9 +18,9 @@
 #include <algorithm>
 #include <cctype>
 #include <chrono>
-#include <optional>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 
 namespace glint {
 
@@ -33,7 +33,7 @@ const std::string_view kPreviewKeys = R"(glint preview keys
   V                 next view
   [ ]               max reflection depth − / +
   , .               reflection cut-off (min reflectivity) ÷2 / ×2
-  - =               tessellation ÷2 / ×2 (mesh raster mode)
+  - =               tessellation ÷2 / ×2 (mesh and auto raster modes)
   M                 raster mode: mesh / proxy / auto
   E                 resolve mode: exact / trust
   T                 tracer: hybrid (item buffer) / ray
@@ -281,19 +281,14 @@ void Preview::restart() {
                     : std::make_shared<const World>(scene, options_.accel);
     log_.worlds.push_back(world_watch.milliseconds());
     const std::shared_ptr<const World>& world = world_;
-    const Camera& c = scene.camera;
-    const bool moved = !drawn_camera_ || drawn_camera_->eye != c.eye ||
-                       drawn_camera_->look_at != c.look_at || drawn_camera_->up != c.up ||
-                       drawn_camera_->fov_y != c.fov_y || drawn_camera_->width != c.width ||
-                       drawn_camera_->height != c.height;
-    if (upload_needed_ || moved) {
+    if (upload_needed_ || drawn_camera_ != scene.camera) {
         if (upload_needed_) items_.upload(*world, frame_.raster, frame_.tessellation);
         upload_needed_ = false;
         ItemBufferResult drawn = items_.draw(*world, true);
         bin_objects(*world, drawn.ids);
         flat_ = std::move(drawn.flat);
         ids_ = std::make_shared<const IdImage>(std::move(drawn.ids));
-        drawn_camera_ = c;
+        drawn_camera_ = scene.camera;
     }
     job_ = std::make_shared<RefineJob>(world, frame_.mode == Mode::hybrid ? ids_ : nullptr,
                                        frame_.resolve, view_ == View::difference);

@@ -62,7 +62,8 @@ std::vector<Device> enumerate_devices() {
         d.facts.extensions = extensions ? extensions : "";
         d.facts.software = d.facts.extensions.find("EGL_MESA_device_software") != std::string::npos;
         if (d.facts.extensions.find("EGL_EXT_device_drm") != std::string::npos)
-            if (const char* file = query_string(handle, EGL_DRM_DEVICE_FILE_EXT)) d.facts.name = file;
+            if (const char* file = query_string(handle, EGL_DRM_DEVICE_FILE_EXT))
+                d.facts.name = file;
         if (d.facts.name.empty()) d.facts.name = "no DRM device file";
         devices.push_back(std::move(d));
     }
@@ -77,8 +78,8 @@ class EglContext final : public GlContext {
             egl_function<PFNEGLGETPLATFORMDISPLAYEXTPROC>("eglGetPlatformDisplayEXT");
         if (!get_platform_display) throw GlError("EGL lacks eglGetPlatformDisplayEXT");
         display_ = device ? get_platform_display(EGL_PLATFORM_DEVICE_EXT, device, nullptr)
-                          : get_platform_display(EGL_PLATFORM_SURFACELESS_MESA,
-                                                 EGL_DEFAULT_DISPLAY, nullptr);
+                          : get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY,
+                                                 nullptr);
         EGLint major = 0, minor = 0;
         if (display_ == EGL_NO_DISPLAY || !eglInitialize(display_, &major, &minor))
             throw GlError(device ? "EGL could not open a display on the device"

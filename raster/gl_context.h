@@ -52,7 +52,7 @@ std::unique_ptr<GlContext> make_context(GlBackend backend);
 
 // The devices EGL enumerates (EGL_EXT_device_enumeration), in its order; empty where EGL cannot.
 struct EglDevice {
-    std::string name;     // its DRM device file where EGL_EXT_device_drm names one
+    std::string name;      // its DRM device file where EGL_EXT_device_drm names one
     bool software = false; // EGL_MESA_device_software: Mesa's llvmpipe, not a GPU
     std::string extensions;
 };

@@ -395,8 +395,9 @@ void ItemBuffer::upload(const World& world, RasterMode mode, int tessellation) {
         const auto tessellation_of = [&]() -> Shared& {
             auto it = shared.find(key);
             if (it == shared.end())
-                it = shared.emplace(key, Shared{tessellate(o.shape, top_radius, tessellation, open),
-                                                std::nullopt})
+                it = shared
+                         .emplace(key, Shared{tessellate(o.shape, top_radius, tessellation, open),
+                                              std::nullopt})
                          .first;
             return it->second;
         };
@@ -404,7 +405,7 @@ void ItemBuffer::upload(const World& world, RasterMode mode, int tessellation) {
         // reach behind the eye).
         const auto proxy_pays = [&] {
             const std::optional<PixelRect> rect =
-                project_bounds(camera, o.bounds, camera.width(), camera.height());
+                project_bounds(camera, o.bounds, camera.width(), camera.height()).pixels;
             const double pixels = rect ? rect->area(camera.width(), camera.height())
                                        : double(camera.width()) * camera.height();
             return proxy_is_cheaper(double(tessellation_of().tessellation.triangles.size()),

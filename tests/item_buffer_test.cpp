@@ -157,7 +157,9 @@ TEST_P(GlTest, HybridEqualsRayModeWithSamplesUniformAndAdaptive) {
                                               std::string(name_of(aa)) + " " +
                                               std::string(name_of(raster));
                     EXPECT_EQ(hybrid.sample_items.has_value(), aa == Antialias::uniform) << label;
-                    if (hybrid.sample_items) EXPECT_EQ(hybrid.sample_items->ids.width, 96 * n);
+                    if (hybrid.sample_items) {
+                        EXPECT_EQ(hybrid.sample_items->ids.width, 96 * n) << label;
+                    }
                     EXPECT_EQ(hybrid.items.has_value(), aa == Antialias::adaptive) << label;
                     EXPECT_EQ(ray.result.image.rgb, hybrid.result.image.rgb) << label;
                     EXPECT_EQ(ray.result.rays.total(), hybrid.result.rays.total()) << label;
@@ -365,8 +367,8 @@ TEST_P(HybridTest, HybridImageAgreesWithRayImage) {
         // Issue 19's acceptance: byte for byte. Exact resolve reproduces ray mode's hit wherever
         // the item buffer is conservative up to rounding, and on id boundaries, where rounding
         // can decide coverage, it tests every object of the pixel's bin (primary_hits.cpp).
-        EXPECT_EQ(ray.result.image.rgb, hybrid.result.image.rgb) << diff.pixels_over_one
-                                                                 << " pixels differ";
+        EXPECT_EQ(ray.result.image.rgb, hybrid.result.image.rgb)
+            << diff.pixels_over_one << " pixels differ";
         EXPECT_EQ(ray.result.ids, hybrid.result.ids);
         EXPECT_EQ(agreement, 1.0);
     } else {

@@ -4,10 +4,10 @@
 
 #include "trace/bounds.h"
 #include "trace/ray.h"
+#include "trace/scene.h"
 
 #include <algorithm>
 #include <optional>
-#include "trace/scene.h"
 
 namespace glint {
 inline namespace GLINT_PRECISION {
@@ -64,29 +64,38 @@ struct PixelRect {
     }
 };
 
-// The pixels of a width × height image of `camera`'s view (the N× grid of samples has N× its
-// size) whose centre rays may meet `bounds`: the rectangle around its corners' projections, one
-// pixel wider on each side for the rounding of the rays' directions (pixel X's ray is that of
-// X + 0.5). Nothing (unbounded) when a corner lies on or behind the eye's plane.
-inline std::optional<PixelRect> project_bounds(const PinholeCamera& camera, const Bounds& bounds,
-                                               int width, int height) {
+// A box seen from the camera: its range of view depth (distance along the forward axis), and
+// the pixels of a width × height image of the camera's view (the N× grid of samples has N× its
+// size) whose centre rays may meet it: the rectangle around its corners' projections, one pixel
+// wider on each side for the rounding of the rays' directions (pixel X's ray is that of
+// X + 0.5). No rectangle (unbounded) when a corner lies on or behind the eye's plane.
+struct ProjectedBounds {
+    double near, far;
+    std::optional<PixelRect> pixels;
+};
+inline ProjectedBounds project_bounds(const PinholeCamera& camera, const Bounds& bounds, int width,
+                                      int height) {
     const DVec3 r(camera.right_scaled()), u(camera.up_scaled()), f(camera.forward());
+    ProjectedBounds out{kInfinity, -kInfinity, std::nullopt};
     double u0 = kInfinity, u1 = -kInfinity, v0 = kInfinity, v1 = -kInfinity;
     for (int corner = 0; corner < 8; ++corner) {
-        const DVec3 c(corner & 1 ? bounds.hi.x : bounds.lo.x, corner & 2 ? bounds.hi.y : bounds.lo.y,
+        const DVec3 c(corner & 1 ? bounds.hi.x : bounds.lo.x,
+                      corner & 2 ? bounds.hi.y : bounds.lo.y,
                       corner & 4 ? bounds.hi.z : bounds.lo.z);
         const double z = glm::dot(c, f);
-        if (!(z > 0)) return std::nullopt;
+        out.near = std::min(out.near, z), out.far = std::max(out.far, z);
         const double pu = width * (1 + glm::dot(c, r) / (glm::dot(r, r) * z)) / 2;
         const double pv = height * (1 - glm::dot(c, u) / (glm::dot(u, u) * z)) / 2;
         u0 = std::min(u0, pu), u1 = std::max(u1, pu), v0 = std::min(v0, pv), v1 = std::max(v1, pv);
     }
+    if (!(out.near > 0)) return out;
     const auto clamp = [](double value, int limit) {
         return static_cast<int>(std::clamp(value, -1.0, static_cast<double>(limit)));
     };
-    return PixelRect{clamp(std::ceil(u0 - 0.5) - 1, width), clamp(std::ceil(v0 - 0.5) - 1, height),
-                     clamp(std::floor(u1 - 0.5) + 1, width),
-                     clamp(std::floor(v1 - 0.5) + 1, height)};
+    out.pixels =
+        PixelRect{clamp(std::ceil(u0 - 0.5) - 1, width), clamp(std::ceil(v0 - 0.5) - 1, height),
+                  clamp(std::floor(u1 - 0.5) + 1, width), clamp(std::floor(v1 - 0.5) + 1, height)};
+    return out;
 }
 
 } // namespace GLINT_PRECISION

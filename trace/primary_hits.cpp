@@ -69,23 +69,17 @@ void bin_objects(const World& world, IdImage& ids) {
     bins.everywhere.clear();
     std::vector<std::optional<PixelRect>> rects(count);
     std::vector<std::uint32_t> per_bin(static_cast<std::size_t>(bins.columns) * bins.rows + 1, 0);
-    const DVec3 forward(world.camera().forward());
     for (std::uint32_t i = 0; i < count; ++i) {
         const Object& o = objects[i];
         if (!o.bounded) {
             bins.everywhere.push_back(i);
             continue;
         }
-        double near = kInfinity, far = -kInfinity;
-        for (int corner = 0; corner < 8; ++corner) {
-            const DVec3 c(corner & 1 ? o.bounds.hi.x : o.bounds.lo.x,
-                          corner & 2 ? o.bounds.hi.y : o.bounds.lo.y,
-                          corner & 4 ? o.bounds.hi.z : o.bounds.lo.z);
-            near = std::min(near, glm::dot(c, forward)), far = std::max(far, glm::dot(c, forward));
-        }
-        bins.near[i] = static_cast<Real>(near - kDepthRangeSlack * std::abs(near));
-        bins.far[i] = static_cast<Real>(far + kDepthRangeSlack * std::abs(far));
-        rects[i] = project_bounds(world.camera(), o.bounds, ids.width, ids.height);
+        const ProjectedBounds seen =
+            project_bounds(world.camera(), o.bounds, ids.width, ids.height);
+        bins.near[i] = static_cast<Real>(seen.near - kDepthRangeSlack * std::abs(seen.near));
+        bins.far[i] = static_cast<Real>(seen.far + kDepthRangeSlack * std::abs(seen.far));
+        rects[i] = seen.pixels;
         if (!rects[i]) bins.everywhere.push_back(i);
     }
     // Two passes over the rectangles: count per bin, then fill, objects in index order (the
@@ -99,20 +93,19 @@ void bin_objects(const World& world, IdImage& ids) {
                 body(static_cast<std::size_t>(by) * bins.columns + bx);
     };
     for (std::uint32_t i = 0; i < count; ++i)
-        if (objects[i].bounded && rects[i])
-            for_each_bin(*rects[i], [&](std::size_t bin) { ++per_bin[bin + 1]; });
+        if (rects[i]) for_each_bin(*rects[i], [&](std::size_t bin) { ++per_bin[bin + 1]; });
     for (std::size_t b = 1; b < per_bin.size(); ++b) per_bin[b] += per_bin[b - 1];
     bins.first = per_bin;
     bins.objects.resize(per_bin.back());
     for (std::uint32_t i = 0; i < count; ++i)
-        if (objects[i].bounded && rects[i])
+        if (rects[i])
             for_each_bin(*rects[i], [&](std::size_t bin) { bins.objects[per_bin[bin]++] = i; });
 }
 
 namespace {
 
 // resolve_pixel, with the camera ray made by make_ray() only where it is needed: a pixel where
-// nothing was drawn and no neighbour differs needs none.
+// nothing was drawn needs none under trust, nor under exact where no object is binned.
 template <class MakeRay>
 Hit resolve_with(const World& world, const IdImage& ids, Resolve resolve, int x, int y,
                  const MakeRay& make_ray, PrimaryStats& stats) {
@@ -122,6 +115,13 @@ Hit resolve_with(const World& world, const IdImage& ids, Resolve resolve, int x,
     if (edge) ++stats.edges;
     const std::uint32_t id = ids.ids[p];
     if (id == 0 && !exact) return {}; // nothing drawn: trust says nothing is there
+    const ScreenBins& bins = ids.bins;
+    const std::size_t bin = static_cast<std::size_t>(y / ScreenBins::kSize) * bins.columns +
+                            static_cast<std::size_t>(x / ScreenBins::kSize);
+    const bool binned = !bins.empty();
+    // Nothing drawn, and no object's projection reaches the pixel: nothing is there to test.
+    if (id == 0 && binned && bins.everywhere.empty() && bins.first[bin] == bins.first[bin + 1])
+        return {};
     const Ray ray = make_ray();
     const auto trace = [&] {
         ++stats.traced;
@@ -138,8 +138,7 @@ Hit resolve_with(const World& world, const IdImage& ids, Resolve resolve, int x,
         }
     }
     if (!exact) return hit;
-    const ScreenBins& bins = ids.bins;
-    if (bins.empty()) return trace();
+    if (!binned) return trace();
     const Real cosine = glm::dot(ray.direction, world.camera().forward());
     const Real z_hit = hit.found() ? hit.t * cosine : kInfinity;
     const Real z_from = edge || id == 0 ? -kInfinity : ids.view_depth[p] * (1 - kDepthSlack);
@@ -152,8 +151,6 @@ Hit resolve_with(const World& world, const IdImage& ids, Resolve resolve, int x,
         const Hit h = world.intersect_one(other, ray, limit);
         return h.found() && (h.t < hit.t || (h.t == hit.t && other < object));
     };
-    const std::size_t bin = static_cast<std::size_t>(y / ScreenBins::kSize) * bins.columns +
-                            static_cast<std::size_t>(x / ScreenBins::kSize);
     bool found = false;
     for (const std::uint32_t other : bins.everywhere)
         if ((found = in_front(other))) break;
@@ -170,7 +167,8 @@ Hit resolve_with(const World& world, const IdImage& ids, Resolve resolve, int x,
 
 Hit resolve_pixel(const World& world, const IdImage& ids, Resolve resolve, int x, int y,
                   const Ray& ray, PrimaryStats& stats) {
-    return resolve_with(world, ids, resolve, x, y, [&] { return ray; }, stats);
+    return resolve_with(
+        world, ids, resolve, x, y, [&] { return ray; }, stats);
 }
 
 std::vector<Hit> primary_hits(const World& world, const PrimarySource& source, PrimaryStats& stats,

@@ -34,6 +34,8 @@ struct Camera {
     double fov_y = 45.0; // full vertical angle, degrees
     int width = 800;
     int height = 600;
+
+    bool operator==(const Camera&) const = default;
 };
 
 struct PointLight {
