@@ -22,8 +22,9 @@ inline namespace GLINT_PRECISION {
 // Which objects can be hit there is decided without a query through the structure:
 //   - the object's bounds, projected onto the image, must cover the pixel's bin (ScreenBins:
 //     a ray that meets an object meets its box, whose projection is the hull of its corners'),
-//   - and its range of view depth must reach the interval's, [t_r·(1 − slack), t_k] in view
-//     depth (t times the direction's forward component).
+//     and a plane must lie in front of the eye somewhere in the bin,
+//   - and its range of view depth (a plane's over the bin) must reach the interval's,
+//     [t_r·(1 − slack), t_k] in view depth (t times the direction's forward component).
 // With exact depths (proxies, planes, flat triangles) the interval is only rounding wide, and
 // nearly every pixel has no object left to test; a tessellation widens it by its deviation. Each
 // object left is intersected exactly, with the tracer's own routine; only when one is hit before
@@ -48,12 +49,51 @@ constexpr double kDepthRangeSlack = 1e-4;
 namespace {
 
 bool on_id_boundary(const IdImage& ids, int x, int y) {
-    const auto id = [&](int px, int py) {
-        return ids.ids[static_cast<std::size_t>(py) * ids.width + px];
-    };
-    const std::uint32_t own = id(x, y);
-    return any_in_neighbourhood(ids.width, ids.height, x, y,
-                                [&](int nx, int ny) { return id(nx, ny) != own; });
+    const int w = ids.width;
+    const std::uint32_t* row = &ids.ids[static_cast<std::size_t>(y) * w + x];
+    const std::uint32_t own = *row;
+    if (x > 0 && x + 1 < w && y > 0 && y + 1 < ids.height) { // every pixel but the border's
+        const std::uint32_t *up = row - w, *down = row + w;
+        return ((up[-1] ^ own) | (up[0] ^ own) | (up[1] ^ own) | (row[-1] ^ own) | (row[1] ^ own) |
+                (down[-1] ^ own) | (down[0] ^ own) | (down[1] ^ own)) != 0;
+    }
+    return any_in_neighbourhood(ids.width, ids.height, x, y, [&](int nx, int ny) {
+        return ids.ids[static_cast<std::size_t>(ny) * w + nx] != own;
+    });
+}
+
+} // namespace
+
+namespace {
+
+// A plane's range of view depth over the pixels [x0, x1] × [y0, y1] of a width × height image,
+// or nothing where its rays meet it only behind the eye. The tracer meets the plane y = 0 of
+// object space at t = c / (n·d), n = the second row of M⁻¹ and c = −(M⁻¹'s offset).y (rays
+// start at the eye, the origin); with d ∝ v = forward + X·right + Y·up, whose forward component
+// is 1, the view depth is c / (n·v), and n·v is linear in the pixel, so its extremes over the
+// rectangle are at the corner pixels' centres. n·v is widened by 10⁻⁵ of |n|·|v|, orders beyond
+// the float rounding of the tracer's n·d; an interval that then reaches 0 (the horizon) is
+// unbounded.
+std::optional<std::pair<double, double>> plane_depths(const PinholeCamera& camera,
+                                                      const Transform& m, int width, int height,
+                                                      int x0, int y0, int x1, int y1) {
+    const Mat3& l = m.inverse_linear;
+    const DVec3 n(l[0][1], l[1][1], l[2][1]);
+    const double c = -static_cast<double>(m.inverse_offset.y);
+    const DVec3 f(camera.forward()), r(camera.right_scaled()), u(camera.up_scaled());
+    double lo = kInfinity, hi = -kInfinity;
+    for (const int px : {x0, x1})
+        for (const int py : {y0, y1}) {
+            const double x = 2 * (px + 0.5) / width - 1, y = 1 - 2 * (py + 0.5) / height;
+            const double nv = glm::dot(n, f + x * r + y * u);
+            lo = std::min(lo, nv), hi = std::max(hi, nv);
+        }
+    const double slack = 1e-5 * glm::length(n) * (1 + glm::length(r) + glm::length(u));
+    lo -= slack, hi += slack;
+    if (c == 0 || (lo <= 0 && hi >= 0)) return std::pair{-double(kInfinity), double(kInfinity)};
+    const double z0 = c / lo, z1 = c / hi;
+    if (z0 < 0) return std::nullopt; // both of one sign: behind the eye
+    return std::pair{std::min(z0, z1), std::max(z0, z1)};
 }
 
 } // namespace
@@ -62,44 +102,61 @@ void bin_objects(const World& world, IdImage& ids) {
     ScreenBins& bins = ids.bins;
     constexpr int k = ScreenBins::kSize;
     bins.columns = (ids.width + k - 1) / k, bins.rows = (ids.height + k - 1) / k;
+    const PinholeCamera& camera = world.camera();
     const std::vector<Object>& objects = world.objects();
     const auto count = static_cast<std::uint32_t>(objects.size());
-    bins.near.assign(count, -kInfinity);
-    bins.far.assign(count, kInfinity);
+    const auto widened = [](std::uint32_t object, double near, double far) {
+        return ScreenBins::Entry{object,
+                                 static_cast<Real>(near - kDepthRangeSlack * std::abs(near)),
+                                 static_cast<Real>(far + kDepthRangeSlack * std::abs(far))};
+    };
+    // Bounded objects: one range each, and their rectangles' bins, or every bin when they reach
+    // behind the eye.
     bins.everywhere.clear();
     std::vector<std::optional<PixelRect>> rects(count);
-    std::vector<std::uint32_t> per_bin(static_cast<std::size_t>(bins.columns) * bins.rows + 1, 0);
+    std::vector<ScreenBins::Entry> ranges(count);
     for (std::uint32_t i = 0; i < count; ++i) {
-        const Object& o = objects[i];
-        if (!o.bounded) {
-            bins.everywhere.push_back(i);
-            continue;
-        }
+        if (!objects[i].bounded) continue;
         const ProjectedBounds seen =
-            project_bounds(world.camera(), o.bounds, ids.width, ids.height);
-        bins.near[i] = static_cast<Real>(seen.near - kDepthRangeSlack * std::abs(seen.near));
-        bins.far[i] = static_cast<Real>(seen.far + kDepthRangeSlack * std::abs(seen.far));
+            project_bounds(camera, objects[i].bounds, ids.width, ids.height);
+        ranges[i] = widened(i, seen.near, seen.far);
         rects[i] = seen.pixels;
-        if (!rects[i]) bins.everywhere.push_back(i);
+        if (!rects[i]) bins.everywhere.push_back(ranges[i]);
     }
-    // Two passes over the rectangles: count per bin, then fill, objects in index order (the
-    // rectangles are clamped to the image; one wholly off it has no bin).
-    const auto for_each_bin = [&](const PixelRect& r, auto&& body) {
+    // Every entry of object i: body(bin, entry). A plane has a range per bin (plane_depths, over
+    // the bin's pixels and one more on each side) and no entry where it lies behind the eye.
+    const auto for_each_entry = [&](std::uint32_t i, auto&& body) {
+        if (!objects[i].bounded) {
+            for (int by = 0; by < bins.rows; ++by)
+                for (int bx = 0; bx < bins.columns; ++bx)
+                    if (const auto z =
+                            plane_depths(camera, objects[i].transform, ids.width, ids.height,
+                                         bx * k - 1, by * k - 1, std::min(bx * k + k, ids.width),
+                                         std::min(by * k + k, ids.height)))
+                        body(static_cast<std::size_t>(by) * bins.columns + bx,
+                             widened(i, z->first, z->second));
+            return;
+        }
+        if (!rects[i]) return;
+        const PixelRect& r = *rects[i]; // clamped to the image; one wholly off it has no bin
         const int x0 = std::max(r.x0, 0), x1 = std::min(r.x1, ids.width - 1);
         const int y0 = std::max(r.y0, 0), y1 = std::min(r.y1, ids.height - 1);
-        if (x0 > x1 || y0 > y1) return; // off the image
+        if (x0 > x1 || y0 > y1) return;
         for (int by = y0 / k; by <= y1 / k; ++by)
             for (int bx = x0 / k; bx <= x1 / k; ++bx)
-                body(static_cast<std::size_t>(by) * bins.columns + bx);
+                body(static_cast<std::size_t>(by) * bins.columns + bx, ranges[i]);
     };
+    // Two passes: count per bin, then fill, objects in index order.
+    std::vector<std::uint32_t> per_bin(static_cast<std::size_t>(bins.columns) * bins.rows + 1, 0);
     for (std::uint32_t i = 0; i < count; ++i)
-        if (rects[i]) for_each_bin(*rects[i], [&](std::size_t bin) { ++per_bin[bin + 1]; });
+        for_each_entry(i, [&](std::size_t bin, const ScreenBins::Entry&) { ++per_bin[bin + 1]; });
     for (std::size_t b = 1; b < per_bin.size(); ++b) per_bin[b] += per_bin[b - 1];
     bins.first = per_bin;
-    bins.objects.resize(per_bin.back());
+    bins.entries.resize(per_bin.back());
     for (std::uint32_t i = 0; i < count; ++i)
-        if (rects[i])
-            for_each_bin(*rects[i], [&](std::size_t bin) { bins.objects[per_bin[bin]++] = i; });
+        for_each_entry(i, [&](std::size_t bin, const ScreenBins::Entry& entry) {
+            bins.entries[per_bin[bin]++] = entry;
+        });
 }
 
 namespace {
@@ -144,18 +201,18 @@ Hit resolve_with(const World& world, const IdImage& ids, Resolve resolve, int x,
     const Real z_from = edge || id == 0 ? -kInfinity : ids.view_depth[p] * (1 - kDepthSlack);
     const Real limit = hit.found() ? std::nextafter(hit.t, kInfinity) : kInfinity;
     bool tested = false;
-    const auto in_front = [&](std::uint32_t other) {
-        if (other == object || bins.near[other] > z_hit || bins.far[other] < z_from) return false;
+    const auto in_front = [&](const ScreenBins::Entry& other) {
+        if (other.object == object || other.near > z_hit || other.far < z_from) return false;
         tested = true;
         ++stats.tests;
-        const Hit h = world.intersect_one(other, ray, limit);
-        return h.found() && (h.t < hit.t || (h.t == hit.t && other < object));
+        const Hit h = world.intersect_one(other.object, ray, limit);
+        return h.found() && (h.t < hit.t || (h.t == hit.t && other.object < object));
     };
     bool found = false;
-    for (const std::uint32_t other : bins.everywhere)
+    for (const ScreenBins::Entry& other : bins.everywhere)
         if ((found = in_front(other))) break;
     for (std::uint32_t e = bins.first[bin]; !found && e < bins.first[bin + 1]; ++e)
-        found = in_front(bins.objects[e]);
+        found = in_front(bins.entries[e]);
     if (tested) ++stats.checked;
     if (!found) return hit;
     const Hit nearer = trace();

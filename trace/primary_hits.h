@@ -22,17 +22,21 @@ template <> struct EnumNames<Resolve> {
 
 inline namespace GLINT_PRECISION {
 
-// Which objects the rays of each 8×8 bin of an id image's pixels may meet, from each object's
-// bounds projected onto the image (bin_objects), and each object's range of view depth (distance
-// along the camera's forward axis). The exact resolve tests only these, and of them only those
-// whose depth range reaches the interval it must check (primary_hits.cpp).
+// Which objects the rays of each 8×8 bin of an id image's pixels may meet, each with its range of
+// view depth (distance along the camera's forward axis) there (bin_objects): a bounded object in
+// the bins its projected bounds cover, with its bounds' range; a plane in the bins where it lies
+// in front of the eye, with its range over the bin. The exact resolve tests only these, and of
+// them only those whose range reaches the interval it must check (primary_hits.cpp).
 struct ScreenBins {
     static constexpr int kSize = 8; // pixels on a side of a bin
+    struct Entry {
+        std::uint32_t object;
+        Real near, far; // widened
+    };
     int columns = 0, rows = 0;
-    std::vector<std::uint32_t> first;      // per bin, its first entry in `objects` (+ one end)
-    std::vector<std::uint32_t> objects;    // bin by bin, in index order
-    std::vector<std::uint32_t> everywhere; // unbounded, or reaching behind the eye: every bin
-    std::vector<Real> near, far;           // per object, widened; ∓infinity for planes
+    std::vector<std::uint32_t> first; // per bin, its first entry in `entries` (+ one end)
+    std::vector<Entry> entries;       // bin by bin, in object order
+    std::vector<Entry> everywhere;    // bounded objects reaching behind the eye: every bin
 
     bool empty() const { return first.empty(); }
 };
