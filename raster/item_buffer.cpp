@@ -117,19 +117,14 @@ struct ItemBuffer::Impl {
         GLuint vao = 0, vertices = 0, indices = 0;
         GLsizei index_count = 0;
     };
-    // Drawn one by one, with uniforms: proxies and full-screen planes.
-    struct DrawItem {
-        std::uint32_t object;
-        std::size_t geometry; // index into geometries; unused for full-screen items
-        bool proxy;           // intersect in the fragment shader
-        bool full_screen;     // planes: no geometry at all
-    };
-    // One instance's attributes (item.vert, locations 1 to 10).
+    // One instance's attributes (item.vert, locations 1 to 15).
     struct Instance {
         glm::mat4 model_view_projection; // computed in double, as for single draws
         glm::mat4 model;
         std::uint32_t object_id; // object index + 1
         glm::vec3 diffuse;
+        glm::mat4 world_to_object; // proxies: M⁻¹
+        glm::vec3 shape;           // proxies: ShapeKind, top radius, open (0 or 1)
     };
 
     GLuint mesh_program = 0, proxy_program = 0, empty_vao = 0, instance_buffer = 0;
@@ -138,10 +133,11 @@ struct ItemBuffer::Impl {
     int width = 0, height = 0;
     int sample_grid = 1; // the draw's N: the target is N× the camera's image on each side
     std::vector<Geometry> geometries;
-    std::vector<DrawItem> items;
-    // Per geometry, the objects drawn with it (a mesh, or the tessellation of one shape): one
-    // instanced draw, each instance's transform, id and colour read from `instance_buffer`.
-    // Geometries drawn one by one (proxies) have none.
+    std::vector<bool> proxy_geometry; // per geometry: a proxy box, drawn with proxy_program
+    // Planes: full-screen passes of proxy_program, one by one with uniforms.
+    std::vector<std::uint32_t> planes;
+    // Per geometry, the objects drawn with it (a mesh, the tessellation of one shape, or one
+    // proxy box): one instanced draw, each instance's attributes read from `instance_buffer`.
     std::vector<std::vector<std::uint32_t>> instances_of;
 
     ~Impl() {
@@ -182,6 +178,7 @@ struct ItemBuffer::Impl {
         g.index_count = static_cast<GLsizei>(triangles.size() * 3);
         glBindVertexArray(0);
         geometries.push_back(g);
+        proxy_geometry.push_back(false);
         return geometries.size() - 1;
     }
 
@@ -211,6 +208,17 @@ struct ItemBuffer::Impl {
         glEnableVertexAttribArray(10);
         glVertexAttribPointer(10, 3, GL_FLOAT, GL_FALSE, stride, at(offsetof(Instance, diffuse)));
         glVertexAttribDivisor(10, 1);
+        for (int column = 0; column < 4; ++column) {
+            const GLuint location = 11 + column;
+            glEnableVertexAttribArray(location);
+            glVertexAttribPointer(
+                location, 4, GL_FLOAT, GL_FALSE, stride,
+                at(offsetof(Instance, world_to_object) + column * sizeof(glm::vec4)));
+            glVertexAttribDivisor(location, 1);
+        }
+        glEnableVertexAttribArray(15);
+        glVertexAttribPointer(15, 3, GL_FLOAT, GL_FALSE, stride, at(offsetof(Instance, shape)));
+        glVertexAttribDivisor(15, 1);
     }
 
     void resize(int w, int h) {
@@ -283,9 +291,11 @@ struct ItemBuffer::Impl {
         return image;
     }
 
-    void draw_single(const World& world, const DrawItem& item, const glm::dmat4& clip, float near,
-                     bool flat_preview);
-    void draw_instanced(const World& world, const glm::dmat4& clip, bool flat_preview);
+    void use_proxy_program(const PinholeCamera& camera, float near, bool flat_preview,
+                           bool instanced);
+    void draw_plane(const World& world, std::uint32_t object, const glm::dmat4& clip, float near,
+                    bool flat_preview);
+    void draw_instanced(const World& world, const glm::dmat4& clip, float near, bool flat_preview);
 
     ItemBufferResult read_back(float near) {
         const std::size_t pixels = static_cast<std::size_t>(width) * height;
@@ -349,14 +359,15 @@ ItemBuffer::ItemBuffer() : impl_(std::make_unique<Impl>()) {
 
 ItemBuffer::~ItemBuffer() = default;
 
-// One pass over the objects, sorting each by its shape's RasterAs into analytic proxies, shared
+// One pass over the objects, sorting each by its shape's RasterAs into planes (full-screen), shared
 // meshes, proxy boxes and instanced tessellations (the cases share the geometry maps built along
 // the way).
 void ItemBuffer::upload(const World& world, RasterMode mode, int tessellation) {
     Impl& gl = *impl_;
     for (const auto& g : gl.geometries) Impl::release(g);
     gl.geometries.clear();
-    gl.items.clear();
+    gl.proxy_geometry.clear();
+    gl.planes.clear();
     gl.instances_of.clear();
     std::map<const Mesh*, std::size_t> mesh_geometry; // each mesh uploaded once
     deviations_.assign(world.objects().size(), 0.0f);
@@ -376,7 +387,7 @@ void ItemBuffer::upload(const World& world, RasterMode mode, int tessellation) {
         const Object& o = world.objects()[i];
         const ShapeTraits& traits = shape_traits(o.shape);
         if (traits.raster == RasterAs::analytic) {
-            gl.items.push_back({i, 0, true, true});
+            gl.planes.push_back(i);
             continue;
         }
         if (traits.raster == RasterAs::triangles) {
@@ -421,8 +432,9 @@ void ItemBuffer::upload(const World& world, RasterMode mode, int tessellation) {
                 Tessellation unit = tessellate(ShapeKind::box, 0, 4);
                 for (Vec3& v : unit.vertices) v = lo + (v + 1.0f) * 0.5f * (hi - lo);
                 it->second = gl.add_geometry(unit.vertices, unit.triangles);
+                gl.proxy_geometry[it->second] = true;
             }
-            gl.items.push_back({i, it->second, true, false});
+            gl.add_instance(it->second, i);
             continue;
         }
         Shared& mesh = tessellation_of();
@@ -458,70 +470,72 @@ float near_plane(const World& world) {
 
 } // namespace
 
-// One object drawn alone: a proxy (or plane) with its per-object uniforms, or a mesh not drawn
-// instanced.
-void ItemBuffer::Impl::draw_single(const World& world, const DrawItem& item, const glm::dmat4& clip,
-                                   float near, bool flat_preview) {
-    Impl& gl = *this;
-    const PinholeCamera& camera = world.camera();
-    const Object& o = world.objects()[item.object];
-    const GLuint program = item.proxy ? gl.proxy_program : gl.mesh_program;
-    glUseProgram(program);
-    const auto uniform = [&](const char* name) { return glGetUniformLocation(program, name); };
-    const glm::dmat4 model = to_mat4(o.transform.linear, o.transform.offset);
-    const glm::mat4 mvp(clip * model);
-    glUniformMatrix4fv(uniform("model_view_projection"), 1, GL_FALSE, glm::value_ptr(mvp));
+// The proxy program, with what every fragment of the frame shares: the camera, the near plane.
+void ItemBuffer::Impl::use_proxy_program(const PinholeCamera& camera, float near, bool flat_preview,
+                                         bool instanced) {
+    glUseProgram(proxy_program);
+    const auto uniform = [&](const char* name) {
+        return glGetUniformLocation(proxy_program, name);
+    };
     glUniform1i(uniform("flat_preview"), flat_preview);
-    glUniform1i(uniform("instanced"), 0);
-    if (flat_preview) {
-        glUniformMatrix4fv(uniform("model"), 1, GL_FALSE, glm::value_ptr(glm::mat4(model)));
-        glUniform3fv(uniform("diffuse"), 1, glm::value_ptr(world.material(item.object).diffuse));
-    }
-    glUniform1i(uniform("full_screen"), item.full_screen);
-    glUniform1ui(uniform("object_id"), item.object + 1);
-    if (item.proxy) {
-        const glm::mat4 inverse(to_mat4(o.transform.inverse_linear, o.transform.inverse_offset));
-        glUniformMatrix4fv(uniform("world_to_object"), 1, GL_FALSE, glm::value_ptr(inverse));
-        glUniform1i(uniform("shape"), static_cast<int>(o.shape));
-        glUniform1f(uniform("top_radius"), o.params.top_radius);
-        glUniform1i(uniform("open"), o.params.open);
-        glUniform3fv(uniform("forward"), 1, glm::value_ptr(camera.forward()));
-        const Vec3 right = camera.right_scaled(), up = camera.up_scaled();
-        glUniform3fv(uniform("right_scaled"), 1, glm::value_ptr(right));
-        glUniform3fv(uniform("up_scaled"), 1, glm::value_ptr(up));
-        glUniform2f(uniform("viewport"), static_cast<float>(camera.width() * gl.sample_grid),
-                    static_cast<float>(camera.height() * gl.sample_grid));
-        glUniform1f(uniform("near"), near);
-    }
-    if (item.full_screen) {
-        glBindVertexArray(gl.empty_vao);
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-    } else {
-        const Impl::Geometry& g = gl.geometries[item.geometry];
-        glBindVertexArray(g.vao);
-        glDrawElements(GL_TRIANGLES, g.index_count, GL_UNSIGNED_INT, nullptr);
-    }
+    glUniform1i(uniform("instanced"), instanced);
+    glUniform1i(uniform("full_screen"), !instanced);
+    glUniform3fv(uniform("forward"), 1, glm::value_ptr(camera.forward()));
+    const Vec3 right = camera.right_scaled(), up = camera.up_scaled();
+    glUniform3fv(uniform("right_scaled"), 1, glm::value_ptr(right));
+    glUniform3fv(uniform("up_scaled"), 1, glm::value_ptr(up));
+    glUniform2f(uniform("viewport"), static_cast<float>(camera.width() * sample_grid),
+                static_cast<float>(camera.height() * sample_grid));
+    glUniform1f(uniform("near"), near);
 }
 
-// Every tessellated shape and mesh: one instanced draw per geometry.
-void ItemBuffer::Impl::draw_instanced(const World& world, const glm::dmat4& clip,
+// A plane: a full-screen pass of the proxy program, its object's M⁻¹, shape, id and colour as
+// uniforms.
+void ItemBuffer::Impl::draw_plane(const World& world, std::uint32_t object, const glm::dmat4& clip,
+                                  float near, bool flat_preview) {
+    const Object& o = world.objects()[object];
+    use_proxy_program(world.camera(), near, flat_preview, false);
+    const auto uniform = [&](const char* name) {
+        return glGetUniformLocation(proxy_program, name);
+    };
+    const glm::dmat4 model = to_mat4(o.transform.linear, o.transform.offset);
+    glUniformMatrix4fv(uniform("model_view_projection"), 1, GL_FALSE,
+                       glm::value_ptr(glm::mat4(clip * model)));
+    glUniform3fv(uniform("diffuse"), 1, glm::value_ptr(world.material(object).diffuse));
+    glUniform1ui(uniform("object_id"), object + 1);
+    const glm::mat4 inverse(to_mat4(o.transform.inverse_linear, o.transform.inverse_offset));
+    glUniformMatrix4fv(uniform("world_to_object"), 1, GL_FALSE, glm::value_ptr(inverse));
+    glUniform1i(uniform("shape"), static_cast<int>(o.shape));
+    glUniform1f(uniform("top_radius"), o.params.top_radius);
+    glUniform1i(uniform("open"), o.params.open);
+    glBindVertexArray(empty_vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+// Every tessellated shape, mesh and proxy box: one instanced draw per geometry, with the
+// instances' matrices composed in double (as for planes), then uploaded in one buffer.
+void ItemBuffer::Impl::draw_instanced(const World& world, const glm::dmat4& clip, float near,
                                       bool flat_preview) {
     Impl& gl = *this;
-    // Every tessellated shape and mesh: one instanced draw per geometry, with the instances'
-    // matrices composed in double as above, then uploaded in one buffer.
     std::vector<Impl::Instance> instances;
     for (const std::vector<std::uint32_t>& objects : gl.instances_of)
         for (const std::uint32_t object : objects) {
             const Object& o = world.objects()[object];
             const glm::dmat4 model = to_mat4(o.transform.linear, o.transform.offset);
-            instances.push_back({glm::mat4(clip * model), glm::mat4(model), object + 1,
-                                 world.material(object).diffuse});
+            instances.push_back(
+                {glm::mat4(clip * model), glm::mat4(model), object + 1,
+                 world.material(object).diffuse,
+                 glm::mat4(to_mat4(o.transform.inverse_linear, o.transform.inverse_offset)),
+                 glm::vec3(static_cast<float>(o.shape), o.params.top_radius,
+                           o.params.open ? 1.0f : 0.0f)});
         }
     if (!gl.instance_buffer) glGenBuffers(1, &gl.instance_buffer);
     glBindBuffer(GL_ARRAY_BUFFER, gl.instance_buffer);
     glBufferData(GL_ARRAY_BUFFER,
                  static_cast<GLsizeiptr>(instances.size() * sizeof(Impl::Instance)),
                  instances.data(), GL_STREAM_DRAW);
+    // Each program's uniforms are its own state: set once, kept while the other draws.
+    use_proxy_program(world.camera(), near, flat_preview, true);
     glUseProgram(gl.mesh_program);
     const auto uniform = [&](const char* name) {
         return glGetUniformLocation(gl.mesh_program, name);
@@ -533,6 +547,7 @@ void ItemBuffer::Impl::draw_instanced(const World& world, const glm::dmat4& clip
     for (std::size_t geometry = 0; geometry < gl.instances_of.size(); ++geometry) {
         const std::size_t count = gl.instances_of[geometry].size();
         if (count == 0) continue;
+        glUseProgram(gl.proxy_geometry[geometry] ? gl.proxy_program : gl.mesh_program);
         glBindVertexArray(gl.geometries[geometry].vao);
         Impl::bind_instances(first);
         glDrawElementsInstanced(GL_TRIANGLES, gl.geometries[geometry].index_count, GL_UNSIGNED_INT,
@@ -562,9 +577,9 @@ ItemBufferResult ItemBuffer::draw(const World& world, bool flat_preview, int sam
     gl.sample_grid = samples;
     ++draws_;
     gl.begin(width, height, flat_preview ? &background : nullptr);
-    for (const Impl::DrawItem& item : gl.items)
-        gl.draw_single(world, item, clip, near, flat_preview);
-    if (!gl.instances_of.empty()) gl.draw_instanced(world, clip, flat_preview);
+    for (const std::uint32_t plane : gl.planes)
+        gl.draw_plane(world, plane, clip, near, flat_preview);
+    if (!gl.instances_of.empty()) gl.draw_instanced(world, clip, near, flat_preview);
     glBindVertexArray(0);
     ItemBufferResult result = gl.read_back(near);
     if (flat_preview) result.flat = gl.read_flat();

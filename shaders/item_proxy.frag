@@ -2,18 +2,19 @@
 // Proxy mode (and planes in every mode): the fragment's own camera ray, inverse-transformed into
 // object space, intersected exactly with the unit primitive; misses are discarded and the depth
 // written is the true hit's, so ids carry no tessellation error. Same conventions as trace/.
-uniform uint object_id;
-uniform int shape; // ShapeKind, as the SHAPE_ constants the C++ side inserts above (item_buffer.cpp)
-uniform float top_radius;
-uniform bool open; // cylinders and cones without caps
-uniform mat4 world_to_object; // camera-relative world → object (M⁻¹)
+// Per object, from item.vert (uniforms for planes, instance attributes for proxy boxes):
+flat in uint item_object_id; // object index + 1
+flat in vec3 item_diffuse;
+flat in mat4 item_world_to_object; // camera-relative world → object (M⁻¹)
+flat in int item_shape; // ShapeKind, as the SHAPE_ constants the C++ side inserts (item_buffer.cpp)
+flat in float item_top_radius;
+flat in int item_open; // cylinders and cones without caps
 uniform vec3 forward;         // unit viewing direction
 uniform vec3 right_scaled;    // right · tan(fov_y/2) · aspect
 uniform vec3 up_scaled;       // up · tan(fov_y/2)
 uniform vec2 viewport;
 uniform float near;
 uniform bool flat_preview; // write `colour` too, as item_mesh.frag does
-uniform vec3 diffuse;
 layout(location = 0) out uint item;
 layout(location = 1) out vec4 colour;
 
@@ -72,27 +73,27 @@ float side(vec3 o, vec3 d, float k) {
 void main() {
     vec2 ndc = 2.0 * gl_FragCoord.xy / viewport - 1.0; // pixel centres, GL's row 0 at the bottom
     vec3 d = normalize(forward + ndc.x * right_scaled + ndc.y * up_scaled);
-    vec3 o = world_to_object[3].xyz; // the eye is the camera-relative origin
-    vec3 dl = mat3(world_to_object) * d;
+    vec3 o = item_world_to_object[3].xyz; // the eye is the camera-relative origin
+    vec3 dl = mat3(item_world_to_object) * d;
     float t = kInfinity;
-    if (shape == SHAPE_SPHERE) t = sphere(o, dl);
-    else if (shape == SHAPE_PLANE) t = plane(o, dl);
-    else if (shape == SHAPE_BOX) t = box(o, dl);
-    else if (shape == SHAPE_DISK) t = disk(o, dl, 1.0, 0.0);
-    else if (shape == SHAPE_CYLINDER || shape == SHAPE_CONE) {
-        float k = shape == SHAPE_CYLINDER ? 0.0 : 1.0 - top_radius;
+    if (item_shape == SHAPE_SPHERE) t = sphere(o, dl);
+    else if (item_shape == SHAPE_PLANE) t = plane(o, dl);
+    else if (item_shape == SHAPE_BOX) t = box(o, dl);
+    else if (item_shape == SHAPE_DISK) t = disk(o, dl, 1.0, 0.0);
+    else if (item_shape == SHAPE_CYLINDER || item_shape == SHAPE_CONE) {
+        float k = item_shape == SHAPE_CYLINDER ? 0.0 : 1.0 - item_top_radius;
         t = side(o, dl, k);
-        if (!open) t = min(t, disk(o, dl, 1.0, 0.0));
-        if (!open && (shape == SHAPE_CYLINDER || top_radius > 0.0))
+        if (item_open == 0) t = min(t, disk(o, dl, 1.0, 0.0));
+        if (item_open == 0 && (item_shape == SHAPE_CYLINDER || item_top_radius > 0.0))
             t = min(t, disk(o, dl, 1.0 - k, 1.0));
     }
     if (flat_preview) { // derivatives before the discard, over the whole 2×2 quad
         vec3 p = t < kInfinity ? t * d : vec3(0.0);
         vec3 facet = cross(dFdx(p), dFdy(p));
         vec3 n = length(facet) > 0.0 ? normalize(facet) : vec3(0.0);
-        colour = vec4(diffuse * (0.15 + 0.85 * abs(dot(n, d))), 1.0);
+        colour = vec4(item_diffuse * (0.15 + 0.85 * abs(dot(n, d))), 1.0);
     }
     if (t == kInfinity) discard;
     gl_FragDepth = near / (t * dot(d, forward)); // reverse-Z: near / view depth
-    item = object_id;
+    item = item_object_id;
 }
