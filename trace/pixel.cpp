@@ -1,21 +1,28 @@
 #include "trace/pixel.h"
 
+#include "trace/recorder.h"
+
 namespace glint {
 inline namespace GLINT_PRECISION {
 
 PixelSample shade_pixel(const World& world, const Ray& ray, const Hit& primary,
-                        const PreparedHit& prepared) {
+                        const PreparedHit& prepared, RayRecorder* recorder) {
     PixelSample sample;
     sample.hit = primary;
+    sample.recorder = recorder;
     ++sample.rays.primary;
+    if (recorder) recorder->begin(RayKind::primary, ray, primary, 1, 1, 0);
     if (!primary.found()) {
         sample.note(0);
         sample.colour = world.background();
-        return sample;
+    } else {
+        const SurfacePoint surface =
+            prepared.surface ? *prepared.surface : world.surface(ray, primary);
+        sample.normal = surface.shading;
+        sample.colour = shade(world, ray, primary, surface, 0, 1, sample, prepared.light);
     }
-    const SurfacePoint surface = prepared.surface ? *prepared.surface : world.surface(ray, primary);
-    sample.normal = surface.shading;
-    sample.colour = shade(world, ray, primary, surface, 0, 1, sample, prepared.light);
+    if (recorder) recorder->end(sample.colour);
+    sample.recorder = nullptr; // the sample outlives the call; the recorder need not
     return sample;
 }
 

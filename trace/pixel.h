@@ -25,9 +25,10 @@ struct PreparedHit {
     const Real* light = nullptr; // null: shade casts its shadow rays itself
 };
 
-// Shades a camera ray from its primary hit, from what `prepared` holds of it where given.
+// Shades a camera ray from its primary hit, from what `prepared` holds of it where given;
+// reports the ray tree to `recorder` where given (trace/recorder.h: `glint explain`).
 PixelSample shade_pixel(const World& world, const Ray& ray, const Hit& primary,
-                        const PreparedHit& prepared = {});
+                        const PreparedHit& prepared = {}, RayRecorder* recorder = nullptr);
 
 // The primary hits of a tile (or any group of pixels whose neighbours are close), prepared for
 // shading: every surface, and in a scene without transmission every light's shadow verdict,

@@ -96,7 +96,8 @@ void grid_hits(const World& world, const PrimarySource& source, int x, int y, Hi
     }
 }
 
-GridPixel shade_grid(const World& world, int x, int y, const Hit* hits) {
+GridPixel shade_grid(const World& world, int x, int y, const Hit* hits, RayRecorder* recorder,
+                     int recorded) {
     const PinholeCamera& camera = world.camera();
     const int n = world.settings().samples;
     const Real inverse_count = 1 / static_cast<Real>(n * n);
@@ -106,7 +107,8 @@ GridPixel shade_grid(const World& world, int x, int y, const Hit* hits) {
     for (int b = 0; b < n; ++b) {
         for (int a = 0; a < n; ++a) {
             const PixelSample sample =
-                shade_pixel(world, camera.sample_ray(x, y, a, b, n), *hits++);
+                shade_pixel(world, camera.sample_ray(x, y, a, b, n), *hits++, {},
+                            b * n + a == recorded ? recorder : nullptr);
             sum += glm::clamp(sample.colour, Vec3(0), Vec3(1));
             omitted += sample.omitted_weight;
             pixel.rays += sample.rays;

@@ -49,7 +49,9 @@ struct GridPixel {
     Real omitted_weight = 0;     // the samples' mean (trace/cutoff.h)
     std::uint32_t centre_id = 0; // sample (N/2, N/2)'s object + 1, 0 for background
 };
-GridPixel shade_grid(const World& world, int x, int y, const Hit* hits);
+// With `recorder`, sample `recorded` (b·N + a) reports its ray tree there (trace/recorder.h).
+GridPixel shade_grid(const World& world, int x, int y, const Hit* hits,
+                     RayRecorder* recorder = nullptr, int recorded = -1);
 
 // Both for one pixel: grid_hits into `hits` (scratch space, made N² long), then shade_grid.
 GridPixel trace_grid(const World& world, const PrimarySource& source, int x, int y,

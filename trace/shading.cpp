@@ -1,5 +1,7 @@
 #include "trace/shading.h"
 
+#include "trace/recorder.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -79,24 +81,41 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoin
     const Vec3 diffuse = odd ? m.checker_diffuse : m.diffuse;
     const Vec3 ambient = odd ? m.checker_ambient : m.ambient;
     tree.note((static_cast<std::uint64_t>(hit.object) + 1) * 2 + (odd ? 1 : 0));
+    RayRecorder* const recorder = tree.recorder;
 
     Vec3 colour = ambient * world.ambient();
+    if (recorder) recorder->surface(surface, odd, colour);
     for (std::size_t j = 0; j < world.lights().size(); ++j) {
         const Light& light = world.lights()[j];
         const auto [l, n_dot_l] = light_direction(surface, light);
-        if (n_dot_l <= 0) continue; // the light is behind the surface
+        LightTerm term{static_cast<std::uint32_t>(j), n_dot_l};
+        if (n_dot_l <= 0) { // the light is behind the surface
+            if (recorder) recorder->light(term);
+            continue;
+        }
         const std::uint64_t shadow_rays = counts.shadow;
         const Real through = known_light ? (++counts.shadow, known_light[j])
                                          : light_through(world, surface, light.position, counts);
         // The verdict: blocked, or how many segments (1 + glass crossings) reached the light.
         tree.note(through == 0 ? ~std::uint64_t{0} : counts.shadow - shadow_rays);
-        if (through == 0) continue;
-        Vec3 lit = diffuse * n_dot_l;
+        term.through = through, term.shadow_rays = counts.shadow - shadow_rays;
+        if (through == 0) {
+            if (recorder) recorder->light(term);
+            continue;
+        }
+        const Vec3 lit_diffuse = diffuse * n_dot_l;
+        Vec3 lit = lit_diffuse, specular(0);
         if (m.specular != Vec3(0.0_r)) { // pow is dear, and NFF's matte surfaces have 1e5
             const Vec3 r = 2.0_r * n * n_dot_l - l; // reflect(−l, n)
-            lit += m.specular * std::pow(glm::max(0.0_r, glm::dot(r, v)), m.shininess);
+            specular = m.specular * std::pow(glm::max(0.0_r, glm::dot(r, v)), m.shininess);
+            lit += specular;
         }
         colour += (through * light.color) * lit;
+        if (recorder) {
+            term.diffuse = (through * light.color) * lit_diffuse;
+            term.specular = (through * light.color) * specular;
+            recorder->light(term);
+        }
     }
 
     // Reflected and transmitted rays, each cast only while it can still matter: below
@@ -104,32 +123,40 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoin
     // min_reflectivity, and within the pixel's tree budget; otherwise its weight is what the
     // cut-off may have cost.
     const RenderSettings& settings = world.settings();
-    const auto follow = [&](Real factor, const Ray& next, std::uint32_t skip,
-                            std::uint64_t& count) {
+    const auto follow = [&](RayKind kind, Real factor, const Ray& next, std::uint32_t skip) {
         const Real next_weight = weight * factor;
         if (depth >= settings.max_depth || next_weight < settings.min_reflectivity ||
             counts.reflection + counts.transmission >= kMaxTreeRays) {
             tree.omitted_weight += next_weight;
+            if (recorder)
+                recorder->omitted(kind, next_weight,
+                                  depth >= settings.max_depth ? OmittedRay::Why::max_depth
+                                  : next_weight < settings.min_reflectivity
+                                      ? OmittedRay::Why::min_weight
+                                      : OmittedRay::Why::tree_budget);
             return;
         }
-        ++count;
+        ++(kind == RayKind::reflection ? counts.reflection : counts.transmission);
         tree.depth = std::max(tree.depth, depth + 1);
         const Hit next_hit = world.intersect(next, kInfinity, skip);
-        colour += factor * shade(world, next, next_hit, depth + 1, next_weight, tree);
+        if (recorder) recorder->begin(kind, next, next_hit, factor, next_weight, depth + 1);
+        const Vec3 seen = shade(world, next, next_hit, depth + 1, next_weight, tree);
+        if (recorder) recorder->end(seen);
+        colour += factor * seen;
     };
     if (m.reflectivity > 0)
-        follow(m.reflectivity, {surface.spawn(), reflect(ray.direction, n)}, surface.skip,
-               counts.reflection);
+        follow(RayKind::reflection, m.reflectivity, {surface.spawn(), reflect(ray.direction, n)},
+               surface.skip);
     if (m.transmission > 0) {
         // Entering (the side of the shape's outward normal): from air into the material.
         const Real eta = surface.entering ? 1 / m.ior : m.ior;
         bool total = false;
         const Vec3 d = refract(glm::normalize(ray.direction), n, eta, total);
         if (total) // leaves on the facing side, as a reflection does
-            follow(m.transmission, {surface.spawn(), d}, surface.skip, counts.transmission);
+            follow(RayKind::transmission, m.transmission, {surface.spawn(), d}, surface.skip);
         else
-            follow(m.transmission, {surface.spawn_through(), d}, surface.skip_through,
-                   counts.transmission);
+            follow(RayKind::transmission, m.transmission, {surface.spawn_through(), d},
+                   surface.skip_through);
     }
     return colour;
 }

@@ -15,6 +15,8 @@ inline namespace GLINT_PRECISION {
 // reaches it; what it cuts is counted in the cut-off bound like any omitted ray.
 inline constexpr std::uint64_t kMaxTreeRays = 1024;
 
+class RayRecorder; // trace/recorder.h
+
 // What one pixel's ray tree tallies besides its colour.
 struct RayTree {
     RayCounts rays; // every ray it cast: the primary ray, shadow, reflected, transmitted
@@ -27,6 +29,8 @@ struct RayTree {
     // segments it passed). Two pixels whose keys differ see different things along their paths:
     // the adaptive antialiasing rule (trace/sampling.h) refines them.
     std::uint64_t path_key = 0;
+    // Where shading reports the tree as it walks it (`glint explain`); null while rendering.
+    RayRecorder* recorder = nullptr;
 
     void note(std::uint64_t event) {
         path_key = (path_key + event + 0x9e3779b97f4a7c15u) * 0xff51afd7ed558ccdu;

@@ -354,6 +354,7 @@ SurfacePoint World::surface(const Ray& ray, const Hit& hit) const {
     SurfacePoint point{m.point_to_world(s.point), normal, shading, 0.0_r};
     point.entering = !from_inside;
     point.object_point = p;
+    point.object_normal = s.normal;
     if (traits.planar || (traits.convex && !from_inside)) point.skip = hit.object;
     if (traits.planar || (traits.convex && from_inside)) point.skip_through = hit.object;
     const bool through = geometry_->materials[object.material].transmission > 0;

@@ -58,7 +58,8 @@ struct SurfacePoint {
     // kNoObject for rays into a solid, which must still find its far wall.
     std::uint32_t skip_through = kNoObject;
     bool entering = true; // the ray meets the side the shape's outward normal is on
-    Vec3 object_point{0}; // M⁻¹o + t·M⁻¹d, where the checker is evaluated
+    Vec3 object_point{0};  // M⁻¹o + t·M⁻¹d, where the checker is evaluated
+    Vec3 object_normal{0}; // the shape's outward normal there, object space (as the shape gives it)
     Vec3 spawn() const { return skip == kNoObject ? position + offset * normal : position; }
     Vec3 spawn_through() const {
         return skip_through == kNoObject ? position - offset * normal : position;
