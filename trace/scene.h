@@ -83,6 +83,7 @@ struct SceneObject {
     float top_radius = 0.0f; // cones only
     bool open = false;       // cylinders and cones: no end caps (NFF's `c`)
     std::uint32_t mesh = 0;  // index into Scene::meshes for triangles and meshes
+    std::string name;        // optional, for people (`glint explain`); every part of an OBJ file
 };
 
 // Antialiasing (DESIGN §11, docs/ANTIALIASING.md): every pixel the mean of its N×N sample grid,

@@ -386,8 +386,8 @@ class Loader {
     // the shape's traits and the mesh or OBJ parts they make, read top to bottom as in
     // docs/SCENES.md).
     void object(const Node& node, Scene& scene) const {
-        expect_object(node, {"shape", "material", "transform", "top_radius", "open", "vertices",
-                             "indices", "file"});
+        expect_object(node, {"name", "shape", "material", "transform", "top_radius", "open",
+                             "vertices", "indices", "file"});
         if (!has(node, "shape"))
             fail(node, "an object needs a shape (" + join(EnumNames<ShapeKind>::names) + ")");
         const Node shape_node = node.child("shape");
@@ -426,6 +426,7 @@ class Loader {
             }
             o.material = static_cast<std::uint32_t>(found - scene.material_names.begin());
         }
+        if (has(node, "name")) o.name = string(node.child("name"));
         if (has(node, "transform")) o.transform = transform(node.child("transform"));
         if (has(node, "top_radius"))
             o.top_radius = static_cast<float>(number_in(node.child("top_radius"), 0, 1e6));
