@@ -24,6 +24,7 @@ Command add_tradeoff_command(CLI::App& app);
 Command add_bench_command(CLI::App& app);
 Command add_info_command(CLI::App& app);
 Command add_preview_command(CLI::App& app);
+Command add_explain_command(CLI::App& app);
 
 // The whole command line: `glint` and its subcommands. main() and the command-line fuzzer
 // (fuzz/cli_fuzzer.cpp) build it the same way.

@@ -45,6 +45,16 @@ struct Frame {
     std::string gl_renderer;                      // hybrid only
 };
 
+// Hybrid mode's GL pass for a frame of `world` (nothing in ray mode or for an empty scene): the
+// context, the item buffers the scene's antialiasing needs, their bins for the exact resolve,
+// into `frame` (items, sample_items, deviations, proxies, gl_renderer, times). Throws GlError
+// when there is no GL context.
+void draw_item_buffers(const World& world, const FrameSettings& settings, Frame& frame);
+
+// Where the frame's primary hits come from: its item buffers (resolved as `resolve` says), or
+// every camera ray when it has none. Points into `frame`.
+PrimarySource primary_source(const Frame& frame, Resolve resolve);
+
 // From a prepared World (float precision; times.prepare stays 0). Throws GlError when hybrid
 // mode cannot get a GL context.
 Frame render_frame(const World& world, const FrameSettings& settings,

@@ -267,6 +267,58 @@ INSTANTIATE_TEST_SUITE_P(EveryClass, BadRunTest, ::testing::Values(
 ), [](const auto& info) { return testing::test_name(info.param.what); });
 // clang-format on
 
+// `glint explain` (docs/EXPLAIN.md): the tree for people on stdout, and JSON whose schema the
+// doc gives, read back here; its bytes are the rendered pixel's.
+TEST(Cli, ExplainPrintsThePixelsTreeAndWritesJsonThatReadsBack) {
+    const fs::path dir = fresh_dir();
+    ASSERT_EQ(glint(dir, "render " GLINT_SOURCE_DIR "/scenes/default.json --size 80x60 -o a.png")
+                  .exit_code,
+              0);
+    const Outcome r = glint(dir, "explain " GLINT_SOURCE_DIR
+                                 "/scenes/default.json 41 33 --size 80x60 --json e.json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const char* expected : {"ray 0: primary", "item buffer (the pixel centre", "M⁻¹o = ", "normalize(M⁻ᵀn')",
+                                 "R_0 = ambient + diffuse + specular", "→ bytes ", "rays: this tree"})
+        EXPECT_NE(r.out.find(expected), std::string::npos) << expected << " in\n" << r.out;
+    const nlohmann::json e = nlohmann::json::parse(slurp(dir / "e.json"));
+    EXPECT_EQ(e["schema"], "glint-explain/1");
+    EXPECT_EQ(e["pixel"], nlohmann::json::array({41, 33}));
+    EXPECT_EQ(e["samples"], 3);
+    EXPECT_EQ(e["sample"], nlohmann::json::array({1, 1}));
+    const nlohmann::json& rays = e["rays"];
+    ASSERT_GE(rays.size(), 1u);
+    EXPECT_EQ(rays[0]["kind"], "primary");
+    EXPECT_TRUE(rays[0]["parent"].is_null());
+    for (const auto& ray : rays)
+        for (const auto& child : ray["children"])
+            EXPECT_EQ(rays[child["ray"].get<std::size_t>()]["parent"], ray["index"]);
+    EXPECT_FALSE(e["item_buffer"].is_null()); // hybrid by default
+    EXPECT_EQ(e["tree_rays"]["primary"], 1);
+    const Image image = read_png(dir / "a.png");
+    const std::uint8_t* pixel = image.pixel(41, 33);
+    EXPECT_EQ(e["pixel_bytes"], nlohmann::json::array({pixel[0], pixel[1], pixel[2]}));
+}
+
+// Bad input to explain: exit 2, one message, and no JSON written.
+TEST(Cli, ExplainRefusesAPixelOrSampleOutsideTheImageAndItsGrid) {
+    const fs::path dir = fresh_dir();
+    const std::string scene = GLINT_SOURCE_DIR "/scenes/default.json --size 80x60 --mode ray ";
+    for (const auto& [args, message] : std::initializer_list<std::pair<std::string, std::string>>{
+             {"80 10", "pixel (80, 10) is outside the 80x60 image (X 0 to 79, Y 0 to 59)"},
+             {"10 -1", "pixel (10, -1) is outside the 80x60 image"},
+             {"10 10 --sample 3,0", "--sample 3,0 is outside the pixel's 3x3 grid of samples"},
+             {"10 10 --sample 1", "--sample 1: expected A,B"},
+             {"10 ten", "Y 'ten' is not a whole number"},
+             {"10", "explain needs the pixel: glint explain [SCENE] X Y"},
+             {"10 10 --json no/dir/e.json", "--json no/dir/e.json: directory no/dir does not exist"}}) {
+        const bool json = args.find("--json") != std::string::npos;
+        const Outcome r = glint(dir, "explain " + scene + args + (json ? "" : " --json e.json"));
+        EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+        EXPECT_NE(r.err.find(message), std::string::npos) << args << ": " << r.err;
+        EXPECT_FALSE(fs::exists(dir / "e.json")) << args;
+    }
+}
+
 TEST(Cli, OutputIntoAMissingDirectoryOrNotPngIsAnError) {
     const fs::path dir = fresh_dir();
     Outcome r = glint(dir, "render -o missing/dir/a.png");

@@ -1,6 +1,7 @@
 // The item buffer, headless (no display): its camera is the tracer's camera, hybrid images match
 // ray images on every shipped scene, exact resolve catches what trust misses, and ids survive
 // the GL round trip beyond 2^24. Run for both OSMesa and EGL.
+#include "explain_shared.h"
 #include "test_scenes.h"
 
 #include "frame/frame.h"
@@ -412,6 +413,37 @@ std::string scene_case_name(const ::testing::TestParamInfo<SceneCase>& info) {
 
 INSTANTIATE_TEST_SUITE_P(ShippedScenes, HybridTest, ::testing::ValuesIn(every_scene_case()),
                          scene_case_name);
+
+// `glint explain` in hybrid mode (ray mode: explain_test.cpp): on every shipped scene with its own
+// antialiasing, at a few hundred pixels each, the bytes it reports are the rendered ones, from
+// the same item buffer and resolve; with trust too, whose images may differ from ray mode's.
+TEST(HybridExplain, ReportsTheRenderedBytesAtHundredsOfPixelsOfEveryShippedScene) {
+    for (const char* name : testing::kShippedScenes) {
+        for (const auto [raster, resolve] : {std::pair{RasterMode::automatic, Resolve::exact},
+                                             std::pair{RasterMode::mesh, Resolve::trust}}) {
+            const Scene scene = testing::shipped(name, 160, 120);
+            const World world(scene);
+            FrameSettings settings;
+            settings.raster = raster, settings.resolve = resolve;
+            const Frame frame = render_frame(world, settings);
+            const std::string what = std::string(name) + " " + std::string(name_of(resolve));
+            testing::expect_explanations_match(scene, world, primary_source(frame, resolve),
+                                               frame.result,
+                                               testing::pixels_to_explain(world, frame.result, 150),
+                                               what);
+            // Where the item buffer named an object, explain says so.
+            if (frame.items) {
+                const PixelExplanation e = explain_pixel(
+                    world, primary_source(frame, resolve), 80, 60, scene.render.samples / 2,
+                    scene.render.samples / 2, !frame.result.refined.empty() && frame.result.refined[60 * 160 + 80]);
+                if (!e.averaged) {
+                    ASSERT_TRUE(e.item_buffer.has_value()) << what;
+                    EXPECT_EQ(e.item_buffer->id, frame.items->ids.ids[60 * 160 + 80]) << what;
+                }
+            }
+        }
+    }
+}
 
 } // namespace
 } // namespace glint

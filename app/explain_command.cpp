@@ -1,0 +1,115 @@
+// `glint explain [SCENE] X Y`: one pixel's ray tree, in the lecture's notation or as JSON
+// (frame/explain.h, docs/EXPLAIN.md).
+#include "app/options.h"
+
+#include "frame/explain.h"
+#include "trace/image.h"
+
+#include <cstdio>
+#include <memory>
+
+namespace glint {
+namespace {
+
+struct ExplainArgs {
+    SceneOptions scene;
+    FrameOptions frame;
+    std::vector<std::string> pixel; // X Y (prepare() sorts out [SCENE] X Y)
+    std::string sample;
+    std::string json;
+};
+
+struct ExplainJob {
+    Scene scene;
+    int x = 0, y = 0, a = 0, b = 0;
+};
+
+int whole_number(const std::string& text, const std::string& what) {
+    std::size_t used = 0;
+    int value = 0;
+    try {
+        value = std::stoi(text, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used == 0 || used != text.size())
+        throw UsageError(what + " '" + text + "' is not a whole number");
+    return value;
+}
+
+// Every check on the input, before anything is traced or written.
+ExplainJob prepare(ExplainArgs& args) {
+    // Positionals fill in order: given X Y alone, the scene's slot took X.
+    if (args.pixel.size() == 1 && !args.scene.scene.empty() &&
+        args.scene.scene.find_first_not_of("0123456789-") == std::string::npos) {
+        args.pixel.insert(args.pixel.begin(), args.scene.scene);
+        args.scene.scene.clear();
+    }
+    if (args.pixel.size() != 2)
+        throw UsageError("explain needs the pixel: glint explain [SCENE] X Y (column, row)");
+    if (!args.json.empty()) check_output(args.json, "--json");
+    ExplainJob job;
+    job.x = whole_number(args.pixel[0], "X");
+    job.y = whole_number(args.pixel[1], "Y");
+    job.scene = args.scene.load();
+    const Camera& camera = job.scene.camera;
+    if (job.x < 0 || job.x >= camera.width || job.y < 0 || job.y >= camera.height)
+        throw UsageError("pixel (" + args.pixel[0] + ", " + args.pixel[1] +
+                         ") is outside the " + std::to_string(camera.width) + "x" +
+                         std::to_string(camera.height) + " image (X 0 to " +
+                         std::to_string(camera.width - 1) + ", Y 0 to " +
+                         std::to_string(camera.height - 1) + ")");
+    const int n = job.scene.render.samples;
+    job.a = job.b = n / 2; // the centre sample (the pixel centre's ray for odd N)
+    if (!args.sample.empty()) {
+        const std::size_t comma = args.sample.find(',');
+        if (comma == std::string::npos)
+            throw UsageError("--sample " + args.sample + ": expected A,B (column, row in the grid)");
+        job.a = whole_number(args.sample.substr(0, comma), "--sample A");
+        job.b = whole_number(args.sample.substr(comma + 1), "--sample B");
+        if (job.a < 0 || job.a >= n || job.b < 0 || job.b >= n)
+            throw UsageError("--sample " + args.sample + " is outside the pixel's " +
+                             std::to_string(n) + "x" + std::to_string(n) +
+                             " grid of samples (A and B from 0 to " + std::to_string(n - 1) + ")");
+    }
+    return job;
+}
+
+int run_explain(ExplainArgs& args) {
+    const ExplainJob job = prepare(args);
+    const World world(job.scene, args.scene.accel_kind());
+    const PixelExplanation e =
+        explain_frame_pixel(world, args.frame.settings(), job.x, job.y, job.a, job.b);
+    const std::string settings = args.frame.describe();
+    const std::string scene = args.scene.scene_path().string();
+    std::string what = scene + " (" + std::to_string(job.scene.camera.width) + "x" +
+                       std::to_string(job.scene.camera.height) + "), " + settings;
+    if (const std::string aa = describe_antialiasing(job.scene.render); !aa.empty())
+        what += ", " + aa;
+    std::fputs(explanation_text(job.scene, world, e, what).c_str(), stdout);
+    if (!args.json.empty()) {
+        write_file_atomically(args.json, explanation_json(job.scene, world, e, scene, settings));
+        std::printf("glint: wrote %s\n", args.json.c_str());
+    }
+    return 0;
+}
+
+} // namespace
+
+Command add_explain_command(CLI::App& app) {
+    auto args = std::make_shared<ExplainArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "explain", "Explain one pixel: its ray tree with every term, as the render computes it");
+    args->scene.add_to(*cmd);
+    cmd->add_option("pixel", args->pixel, "X Y: the pixel's column and row (0, 0: top left)")
+        ->expected(1, 2);
+    args->frame.add_to(*cmd, true);
+    cmd->add_option("--sample", args->sample,
+                    "A,B: which sample of the pixel's NxN grid to explain; default the centre "
+                    "one (N/2, N/2)");
+    cmd->add_option("--json", args->json, "Also write the explanation as JSON (docs/EXPLAIN.md)");
+    return {cmd, [args] { prepare(*args); },
+            [args] { return guarded([&] { return run_explain(*args); }); }};
+}
+
+} // namespace glint

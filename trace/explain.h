@@ -1,0 +1,60 @@
+// One pixel explained (`glint explain`, the preview's click): the ray tree of one of its samples
+// as the renderer's own path computed it (trace/pixel.h with a RayRecorder, trace/recorder.h),
+// what the item buffer said there and how the resolve went, and the byte values the render
+// writes. docs/EXPLAIN.md shows it at work.
+#pragma once
+
+#include "trace/primary_hits.h"
+#include "trace/precision.h"
+#include "trace/recorder.h"
+
+#include <array>
+#include <optional>
+
+namespace glint {
+inline namespace GLINT_PRECISION {
+
+// What the item buffer said at a sample, and how the exact resolve (trace/primary_hits.h) went.
+struct ItemBufferVerdict {
+    std::uint32_t id = 0;   // object + 1; 0: nothing drawn
+    float view_depth = 0;   // of what was drawn there
+    PrimaryStats resolve;   // this sample's share of the counters: which steps it took
+    // The pixel centre's verdict in adaptive antialiasing's first pass, for a refined pixel whose
+    // grid was traced by ray (trace/sampling.h: without rule 3 no N×N item buffer is drawn).
+    bool first_pass = false;
+    // In words: "direct" (the named object's exact hit, nothing nearer), "corrected" (a nearer
+    // object was found), "fallback" (the named object was missed: traced in full), "background"
+    // (nothing drawn, nothing there), "traced" (nothing drawn, the ray found something).
+    const char* outcome() const;
+};
+
+struct PixelExplanation {
+    int x = 0, y = 0;  // the pixel
+    int n = 1;         // its N×N grid (the scene's samples)
+    int a = 0, b = 0;  // the sample explained: column and row in the grid
+    std::vector<RecordedRay> rays; // its tree, the primary ray first, depth first
+    // Per ray that hit something: the ray in its object's space, M⁻¹·origin (w = 1) and
+    // M⁻¹·direction (w = 0), as the intersection routine saw it; unset for misses.
+    std::vector<Ray> object_rays;
+    // Per ray, per light (as in rays[i].lights): the first opaque object on the blocked shadow
+    // segment, kNoObject where the light is not blocked.
+    std::vector<std::vector<std::uint32_t>> blockers;
+    std::optional<ItemBufferVerdict> item_buffer; // hybrid only
+    RayCounts tree_rays; // the rays of `rays`, shadow rays included: the explained sample's
+    std::array<std::uint8_t, 3> sample_bytes{};
+    // The pixel as the render writes it: the sample itself (N = 1, or adaptive antialiasing
+    // where the pixel was not refined) or its grid's mean.
+    bool averaged = false;
+    Vec3 pixel_colour{0}; // the mean of the clamped samples, or the sample's colour unclamped
+    RayCounts pixel_rays; // as the render counts them for the pixel (every sample of a grid)
+    std::array<std::uint8_t, 3> pixel_bytes{};
+};
+
+// Explains sample (a, b) of pixel (x, y) (both in range: the caller checks), whose primary hits
+// come from `source` as in the render. `refined`: adaptive antialiasing refined this pixel (the
+// render's RenderResult::refined); ignored unless the scene is adaptive with N > 1.
+PixelExplanation explain_pixel(const World& world, const PrimarySource& source, int x, int y,
+                               int a, int b, bool refined = false);
+
+} // namespace GLINT_PRECISION
+} // namespace glint
