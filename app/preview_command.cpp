@@ -5,6 +5,7 @@
 #include "raster/window.h"
 
 #include <cctype>
+#include <cstdio>
 #include <iostream>
 
 namespace glint {
@@ -18,6 +19,9 @@ struct PreviewArgs {
     double spin = 0;
     std::string keys;
     std::string view = "final";
+    std::string click;
+    std::vector<std::string> settings;
+    bool no_panel = false;
 };
 
 PreviewOptions prepare(const PreviewArgs& args) {
@@ -40,8 +44,29 @@ PreviewOptions prepare(const PreviewArgs& args) {
         if (!std::isgraph(static_cast<unsigned char>(key)))
             throw UsageError("--keys " + args.keys +
                              ": keys are printable characters, one a frame (e.g. \"[]M\")");
+    for (const std::string& assignment : args.settings) {
+        try {
+            check_preview_setting(assignment);
+        } catch (const std::invalid_argument& e) {
+            throw UsageError(std::string("--set ") + e.what());
+        }
+    }
+    options.settings = args.settings;
+    options.panel = !args.no_panel;
     options.scene = args.scene.load();
     options.scene_name = args.scene.scene_path().string();
+    if (!args.click.empty()) {
+        const Camera& camera = options.scene.camera;
+        int x = 0, y = 0;
+        char end = 0;
+        if (std::sscanf(args.click.c_str(), "%d,%d%c", &x, &y, &end) != 2)
+            throw UsageError("--click " + args.click + ": expected X,Y (the pixel's column, row)");
+        if (x < 0 || y < 0 || x >= camera.width || y >= camera.height)
+            throw UsageError("--click " + args.click + ": the pixel is outside the " +
+                             std::to_string(camera.width) + "x" + std::to_string(camera.height) +
+                             " image");
+        options.click = std::pair{x, y};
+    }
     options.accel = args.scene.accel_kind();
     options.frame = args.frame.settings();
     options.view = *from_name<View>(args.view); // checked by --view
@@ -95,6 +120,15 @@ Command add_preview_command(CLI::App& app) {
                     "difference (ray vs hybrid) or reflections (reflection depth)")
         ->capture_default_str()
         ->check(CLI::IsMember(all_names<View>()));
+    cmd->add_option("--click", args->click,
+                    "Click pixel X,Y once the trace has finished: explain it (as glint explain "
+                    "does) and draw its ray tree");
+    cmd->add_option("--set", args->settings,
+                    "Scripted: set one of the panel's settings, name=value, through the panel's "
+                    "own path on the second frame (mode, raster, resolve, depth, cutoff, tess, "
+                    "samples, aa, accel, view, panel); repeatable");
+    cmd->add_flag("--no-panel", args->no_panel,
+                  "Start with the panel hidden (G shows it), e.g. for clean screenshots");
     return {cmd, [args] { prepare(*args); },
             [args] { return guarded([&] { return run(*args); }); }};
 }

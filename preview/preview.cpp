@@ -1,8 +1,12 @@
 #include "preview/preview.h"
 
 #include "preview/orbit_camera.h"
+#include "preview/panel.h"
+#include "preview/ray_overlay.h"
 #include "preview/refiner.h"
 #include "preview/views.h"
+
+#include "frame/explain.h"
 
 #include "raster/item_buffer.h"
 #include "raster/window.h"
@@ -15,12 +19,16 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include <imgui.h>
+
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <optional>
+#include <stdexcept>
 
 namespace glint {
 
@@ -28,6 +36,8 @@ const std::string_view kPreviewKeys = R"(glint preview keys
   left drag         orbit around look_at
   right/middle drag pan
   wheel             dolly towards / away from look_at
+  left click        explain the pixel: its ray tree drawn, the explanation in the panel
+  G                 the panel (and the explained tree) on / off
   R                 reset the camera to the scene's
   1 … 6             view: final image, item buffer, depth, normals, ray vs hybrid, reflection depth
   V                 next view
@@ -41,6 +51,116 @@ const std::string_view kPreviewKeys = R"(glint preview keys
   H                 this list
   Esc, Q            quit
 )";
+
+const std::vector<std::string> kPreviewSettings = {
+    "mode", "raster", "resolve", "depth", "cutoff", "tess", "samples", "aa", "accel", "view", "panel"};
+
+namespace {
+
+// What the panel controls, wherever it lives (the preview's members, or a scratch copy when a
+// scripted --set is checked).
+struct PanelState {
+    FrameSettings& frame;
+    RenderSettings& render;
+    std::optional<AccelKind>& accel;
+    View& view;
+    bool& panel;
+};
+
+// What a change of setting asks of the preview.
+enum class Effect { retrace, upload, new_world, view, panel };
+
+std::string one_of(const std::vector<std::string>& names) {
+    std::string text;
+    for (const std::string& n : names) text += (text.empty() ? "" : ", ") + n;
+    return text;
+}
+
+template <class Enum> Enum parse_name(const std::string& name, const std::string& value) {
+    if (const std::optional<Enum> v = from_name<Enum>(value)) return *v;
+    throw std::invalid_argument(name + "=" + value + ": expected one of " +
+                                one_of(all_names<Enum>()));
+}
+
+double parse_number(const std::string& name, const std::string& value, double lo, double hi) {
+    std::size_t used = 0;
+    double v = 0;
+    try {
+        v = std::stod(value, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used == 0 || used != value.size() || !(v >= lo && v <= hi))
+        throw std::invalid_argument(name + "=" + value + ": expected a number from " +
+                                    std::to_string(lo).substr(0, std::to_string(lo).find('.')) +
+                                    " to " +
+                                    std::to_string(hi).substr(0, std::to_string(hi).find('.')));
+    return v;
+}
+
+int parse_whole(const std::string& name, const std::string& value, int lo, int hi) {
+    const double v = parse_number(name, value, lo, hi);
+    if (v != static_cast<int>(v))
+        throw std::invalid_argument(name + "=" + value + ": expected a whole number");
+    return static_cast<int>(v);
+}
+
+// Sets one of the panel's settings by name: the panel's controls and --set both come here.
+Effect set_panel_setting(const PanelState& s, const std::string& name, const std::string& value) {
+    if (name == "mode") return s.frame.mode = parse_name<Mode>(name, value), Effect::retrace;
+    if (name == "raster") return s.frame.raster = parse_name<RasterMode>(name, value), Effect::upload;
+    if (name == "resolve")
+        return s.frame.resolve = parse_name<Resolve>(name, value), Effect::retrace;
+    if (name == "depth")
+        return s.render.max_depth = parse_whole(name, value, 0, kMaxDepth), Effect::retrace;
+    if (name == "cutoff")
+        return s.render.min_reflectivity = static_cast<float>(parse_number(name, value, 0, 1)),
+               Effect::retrace;
+    if (name == "tess")
+        return s.frame.tessellation = parse_whole(name, value, kMinTessellation, kMaxTessellation),
+               Effect::upload;
+    if (name == "samples")
+        return s.render.samples = parse_whole(name, value, 1, kMaxSamples), Effect::retrace;
+    if (name == "aa") return s.render.antialias = parse_name<Antialias>(name, value), Effect::retrace;
+    if (name == "accel") {
+        s.accel = value == "auto" ? std::nullopt
+                                  : std::optional<AccelKind>(parse_name<AccelKind>(name, value));
+        return Effect::new_world;
+    }
+    if (name == "view") return s.view = parse_name<View>(name, value), Effect::view;
+    if (name == "panel") {
+        if (value != "on" && value != "off")
+            throw std::invalid_argument(name + "=" + value + ": expected on or off");
+        return s.panel = value == "on", Effect::panel;
+    }
+    throw std::invalid_argument("no setting named '" + name + "' (the panel's: " +
+                                one_of(kPreviewSettings) + ")");
+}
+
+std::pair<std::string, std::string> split_assignment(const std::string& assignment) {
+    const std::size_t eq = assignment.find('=');
+    if (eq == std::string::npos)
+        throw std::invalid_argument(assignment + ": expected name=value (names: " +
+                                    one_of(kPreviewSettings) + ")");
+    return {assignment.substr(0, eq), assignment.substr(eq + 1)};
+}
+
+} // namespace
+
+PanelPlace panel_place(float window_width, float window_height) {
+    const float width = std::min(360.0f, window_width * 0.45f);
+    return {window_width - width - 6, 6, width, window_height - 12};
+}
+
+void check_preview_setting(const std::string& assignment) {
+    FrameSettings frame;
+    RenderSettings render;
+    std::optional<AccelKind> accel;
+    View view = View::final;
+    bool panel = true;
+    const auto [name, value] = split_assignment(assignment);
+    set_panel_setting({frame, render, accel, view, panel}, name, value);
+}
 
 namespace {
 
@@ -89,13 +209,22 @@ class Preview {
     bool upload_tiles(); // true when every tile of the current view is on screen
     void present();
     void save_screenshot(const std::filesystem::path& path);
-    void update_title(bool force);
     std::string describe_settings() const;
 
     void on_key(int key);
     void on_cursor(double x, double y);
     void on_button(int button, int action);
     void on_scroll(double dy);
+
+    // The panel's path for every setting (its controls, and scripted --set).
+    void set(const std::string& name, const std::string& value);
+    // Explains pixel (x, y) of the finished trace: the text to stdout and the panel, the tree's
+    // segments to the overlay.
+    void explain(int x, int y);
+    void draw_panel();
+    void draw_overlay();
+    // The image pixel under window position (x, y), if any.
+    std::optional<std::pair<int, int>> pixel_at(double x, double y) const;
 
     const PreviewOptions& options_;
     Window window_;
@@ -116,12 +245,23 @@ class Preview {
     int texture_width_ = 0, texture_height_ = 0;
     int button_ = -1; // the mouse button held, if any
     double cursor_x_ = 0, cursor_y_ = 0;
+    double press_x_ = 0, press_y_ = 0; // where the left button went down
+    bool dragged_ = false;              // since then, moved far enough to orbit (not a click)
+    std::optional<AccelKind> accel_;
+    bool panel_visible_ = true;
+    // The explained pixel, its text and its tree's segments; explained again after a setting
+    // changes (once the new trace finishes), forgotten when the camera moves.
+    std::optional<std::pair<int, int>> explained_, explain_pending_;
+    std::string explanation_;
+    std::vector<OverlaySegment> overlay_;
+    double item_buffer_ms_ = 0;
     bool screenshot_requested_ = false;
     int screenshots_ = 0;
-    Stopwatch title_watch_;              // since the title last changed (restart() sets it first)
     std::shared_ptr<const World> world_; // of the current camera
-    std::string title_;
     FrameLog log_;
+    // After the window: ImGui's callbacks chain to the preview's, set before it, and it is gone
+    // before the window's GL context.
+    std::optional<Panel> panel_;
     Refiner refiner_; // last: its workers stop before anything they read goes
 };
 
@@ -132,7 +272,8 @@ Preview::Preview(const PreviewOptions& options)
                   .c_str(),
               !options.scripted()),
       camera_(options.scene.camera), scene_(options.scene), frame_(options.frame),
-      view_(options.view), refiner_(options.frame.threads) {
+      view_(options.view), accel_(options.accel), panel_visible_(options.panel),
+      refiner_(options.frame.threads) {
     glfwSwapInterval(0); // frames are paced by the loop; swapping never waits for a display
     glGenTextures(1, &texture_);
     glGenFramebuffers(1, &read_framebuffer_);
@@ -151,6 +292,7 @@ Preview::Preview(const PreviewOptions& options)
     glfwSetScrollCallback(w, [](GLFWwindow* window, double, double dy) {
         static_cast<Preview*>(glfwGetWindowUserPointer(window))->on_scroll(dy);
     });
+    panel_.emplace(w);
 }
 
 Preview::~Preview() {
@@ -172,10 +314,167 @@ std::string Preview::describe_settings() const {
     if (render.samples > 1)
         text += ", " + std::to_string(render.samples) + "x" + std::to_string(render.samples) + " " +
                 std::string(name_of(render.antialias));
-    return text;
+    char cutoff[48];
+    std::snprintf(cutoff, sizeof cutoff, ", cut-off %g", static_cast<double>(render.min_reflectivity));
+    text += cutoff;
+    text += ", " + (world_ ? std::string(name_of(world_->accelerator().kind()))
+                           : accel_ ? std::string(name_of(*accel_))
+                                    : std::string("auto"));
+    return text + ", view " + std::string(name_of(view_));
+}
+
+namespace {
+
+// One colour per ray kind (docs/PREVIEW.md), as ImGui packs them (ABGR).
+ImU32 overlay_colour(OverlaySegment::Kind kind) {
+    switch (kind) {
+    case OverlaySegment::Kind::primary:
+        return IM_COL32(255, 255, 255, 255);
+    case OverlaySegment::Kind::reflection:
+        return IM_COL32(60, 220, 255, 255);
+    case OverlaySegment::Kind::transmission:
+        return IM_COL32(120, 255, 120, 255);
+    case OverlaySegment::Kind::shadow:
+        return IM_COL32(255, 220, 60, 255);
+    case OverlaySegment::Kind::blocked_shadow:
+        break;
+    }
+    return IM_COL32(255, 70, 70, 255);
+}
+
+// A combo box over an enum's names; returns the chosen name when it changes.
+template <class Enum> std::optional<std::string> enum_combo(const char* label, Enum value) {
+    std::optional<std::string> chosen;
+    if (ImGui::BeginCombo(label, std::string(name_of(value)).c_str())) {
+        for (const Enum v : all_values<Enum>())
+            if (ImGui::Selectable(std::string(name_of(v)).c_str(), v == value))
+                chosen = std::string(name_of(v));
+        ImGui::EndCombo();
+    }
+    return chosen;
+}
+
+} // namespace
+
+// The tree's segments over the image, scaled from image pixels to the window: blocked shadow
+// rays dashed, the primary ray a ring around the clicked pixel.
+void Preview::draw_overlay() {
+    if (overlay_.empty() || !job_) return;
+    ImDrawList* draw = panel_->background();
+    const ImVec2 size = ImGui::GetIO().DisplaySize;
+    const float sx = size.x / static_cast<float>(job_->width());
+    const float sy = size.y / static_cast<float>(job_->height());
+    for (const OverlaySegment& s : overlay_) {
+        const ImVec2 a(s.x0 * sx, s.y0 * sy), b(s.x1 * sx, s.y1 * sy);
+        const ImU32 colour = overlay_colour(s.kind);
+        if (s.kind == OverlaySegment::Kind::primary) {
+            draw->AddCircle(a, 6.0f, colour, 16, 2.0f);
+            continue;
+        }
+        if (s.kind != OverlaySegment::Kind::blocked_shadow) {
+            draw->AddLine(a, b, colour, 2.0f);
+            continue;
+        }
+        const float length = std::hypot(b.x - a.x, b.y - a.y);
+        const float step = 8.0f / std::max(length, 1e-3f); // 5 on, 3 off, in window pixels
+        for (float t = 0; t < 1; t += step) {
+            const float u = std::min(1.0f, t + step * 5 / 8);
+            draw->AddLine(ImVec2(a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t),
+                          ImVec2(a.x + (b.x - a.x) * u, a.y + (b.y - a.y) * u), colour, 2.0f);
+        }
+    }
+}
+
+// The panel (80 lines: three sections, each read top to bottom as it appears on screen):
+// the settings as controls, the frame's figures, and the explained pixel.
+void Preview::draw_panel() {
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    const PanelPlace place = panel_place(display.x, display.y);
+    ImGui::SetNextWindowPos(ImVec2(place.x, place.y), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(place.width, place.height), ImGuiCond_FirstUseEver);
+    ImGui::Begin("glint preview", nullptr, ImGuiWindowFlags_NoCollapse);
+    if (ImGui::CollapsingHeader("Settings", ImGuiTreeNodeFlags_DefaultOpen)) {
+        RenderSettings& render = scene_.render;
+        if (auto v = enum_combo("mode", frame_.mode)) set("mode", *v);
+        if (frame_.mode == Mode::hybrid) {
+            if (auto v = enum_combo("raster", frame_.raster)) set("raster", *v);
+            if (auto v = enum_combo("resolve", frame_.resolve)) set("resolve", *v);
+            int tess = frame_.tessellation;
+            if (ImGui::SliderInt("tessellation", &tess, kMinTessellation, 256, "%d",
+                                 ImGuiSliderFlags_Logarithmic))
+                set("tess", std::to_string(tess));
+        }
+        int depth = render.max_depth;
+        if (ImGui::SliderInt("depth", &depth, 0, 16)) set("depth", std::to_string(depth));
+        float cutoff = render.min_reflectivity;
+        if (ImGui::SliderFloat("cut-off", &cutoff, 0.0f, 1.0f, "%.4f",
+                               ImGuiSliderFlags_Logarithmic))
+            set("cutoff", std::to_string(cutoff));
+        int samples = render.samples;
+        if (ImGui::SliderInt("samples (N×N)", &samples, 1, 8))
+            set("samples", std::to_string(samples));
+        if (render.samples > 1)
+            if (auto v = enum_combo("antialiasing", render.antialias)) set("aa", *v);
+        if (world_)
+            if (auto v = enum_combo("structure", world_->accelerator().kind())) set("accel", *v);
+        if (auto v = enum_combo("view", view_)) set("view", *v);
+    }
+    if (ImGui::CollapsingHeader("Frame", ImGuiTreeNodeFlags_DefaultOpen) && job_) {
+        const RayCounts rays = job_->rays();
+        if (job_->finished())
+            ImGui::Text("%dx%d traced in %.3f s", job_->width(), job_->height(), job_->seconds());
+        else
+            ImGui::Text("%dx%d tracing: %d%%", job_->width(), job_->height(),
+                        100 * job_->tiles_done() / (job_->passes() * job_->tile_count()));
+        ImGui::Text("world %.1f ms, item buffer %.1f ms",
+                    log_.worlds.empty() ? log_.first_world : log_.worlds.back(), item_buffer_ms_);
+        ImGui::Text("last frame (UI) %.1f ms",
+                    log_.frames.empty() ? log_.first_frame : log_.frames.back());
+        ImGui::Text("rays: %llu primary, %llu shadow", static_cast<unsigned long long>(rays.primary),
+                    static_cast<unsigned long long>(rays.shadow));
+        ImGui::Text("      %llu reflection, %llu transmission",
+                    static_cast<unsigned long long>(rays.reflection),
+                    static_cast<unsigned long long>(rays.transmission));
+        if (frame_.mode == Mode::hybrid) {
+            const PrimaryStats p = job_->primary_stats();
+            ImGui::Text("resolve: %llu direct, %llu corrected",
+                        static_cast<unsigned long long>(p.exact_intersections - p.fallbacks),
+                        static_cast<unsigned long long>(p.corrected));
+            ImGui::Text("         %llu fallbacks, %llu on edges",
+                        static_cast<unsigned long long>(p.fallbacks),
+                        static_cast<unsigned long long>(p.edges));
+            ImGui::Text("         %llu checked, %llu traced in full",
+                        static_cast<unsigned long long>(p.checked),
+                        static_cast<unsigned long long>(p.traced));
+        }
+        if (scene_.render.samples > 1)
+            ImGui::Text("antialiasing: %llu pixels took the grid",
+                        static_cast<unsigned long long>(job_->refined_pixels()));
+    }
+    if (ImGui::CollapsingHeader("Pixel", ImGuiTreeNodeFlags_DefaultOpen)) {
+        for (const auto& [kind, label] :
+             {std::pair{OverlaySegment::Kind::primary, "primary (the pixel)"},
+              {OverlaySegment::Kind::reflection, "reflection"},
+              {OverlaySegment::Kind::transmission, "transmission"},
+              {OverlaySegment::Kind::shadow, "shadow, lit"},
+              {OverlaySegment::Kind::blocked_shadow, "shadow, blocked (dashed)"}}) {
+            ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(overlay_colour(kind)), "%s", label);
+            if (kind == OverlaySegment::Kind::primary || kind == OverlaySegment::Kind::transmission)
+                ImGui::SameLine(); // two to a line
+        }
+        if (explanation_.empty())
+            ImGui::TextWrapped("Click a pixel to explain it: its ray tree is drawn into the "
+                               "scene and written here and on standard output.");
+        else if (ImGui::BeginChild("explanation", ImVec2(0, 0), true,
+                                   ImGuiWindowFlags_HorizontalScrollbar))
+            ImGui::TextUnformatted(explanation_.c_str());
+        if (!explanation_.empty()) ImGui::EndChild();
+    }
+    ImGui::End();
 }
 
 void Preview::on_key(int key) {
+    if (panel_visible_ && panel_->wants_keyboard()) return; // a control of the panel has it
     switch (key) {
     case GLFW_KEY_ESCAPE:
     case GLFW_KEY_Q:
@@ -186,6 +485,9 @@ void Preview::on_key(int key) {
         return;
     case GLFW_KEY_P:
         screenshot_requested_ = true;
+        return;
+    case GLFW_KEY_G:
+        panel_visible_ = !panel_visible_;
         return;
     case GLFW_KEY_R:
         camera_.reset();
@@ -237,18 +539,30 @@ void Preview::on_key(int key) {
         !job_->compares_with_ray())
         dirty_ = true;
     show_base(); // a new view
-    update_title(true);
 }
 
+// A left press and release without moving is a click: the pixel is explained. Moving more than
+// kClickSlop pixels first makes it a drag, which orbits.
+constexpr double kClickSlop = 3;
+
 void Preview::on_button(int button, int action) {
-    button_ = action == GLFW_PRESS ? button : -1;
     glfwGetCursorPos(window_.handle(), &cursor_x_, &cursor_y_);
+    if (action == GLFW_PRESS && panel_visible_ && panel_->wants_mouse()) return; // the panel's
+    const bool click = action == GLFW_RELEASE && button_ == GLFW_MOUSE_BUTTON_LEFT && !dragged_;
+    button_ = action == GLFW_PRESS ? button : -1;
+    if (action == GLFW_PRESS) press_x_ = cursor_x_, press_y_ = cursor_y_, dragged_ = false;
+    if (click)
+        if (const auto pixel = pixel_at(cursor_x_, cursor_y_)) explain_pending_ = pixel;
 }
 
 void Preview::on_cursor(double x, double y) {
     const double dx = x - cursor_x_, dy = y - cursor_y_;
     cursor_x_ = x, cursor_y_ = y;
+    if (button_ == GLFW_MOUSE_BUTTON_LEFT && !dragged_ &&
+        std::hypot(x - press_x_, y - press_y_) <= kClickSlop)
+        return; // still a click
     if (button_ == GLFW_MOUSE_BUTTON_LEFT) {
+        dragged_ = true;
         camera_.orbit(0.3 * dx, -0.3 * dy); // degrees per screen pixel
         dirty_ = true;
     } else if (button_ == GLFW_MOUSE_BUTTON_RIGHT || button_ == GLFW_MOUSE_BUTTON_MIDDLE) {
@@ -278,13 +592,19 @@ void Preview::restart() {
     // The first world prepares the scene; later ones share its meshes and refit its structure.
     const Stopwatch world_watch;
     world_ = world_ ? std::make_shared<const World>(scene, *world_)
-                    : std::make_shared<const World>(scene, options_.accel);
+                    : std::make_shared<const World>(scene, accel_);
     log_.worlds.push_back(world_watch.milliseconds());
     const std::shared_ptr<const World>& world = world_;
+    // An explained pixel is explained again for new settings; a new camera forgets it.
+    if (explained_ && drawn_camera_ == scene.camera && !explain_pending_)
+        explain_pending_ = explained_;
+    if (drawn_camera_ != scene.camera) explained_.reset(), overlay_.clear(), explanation_.clear();
     if (upload_needed_ || drawn_camera_ != scene.camera) {
+        const Stopwatch items_watch;
         if (upload_needed_) items_.upload(*world, frame_.raster, frame_.tessellation);
         upload_needed_ = false;
         ItemBufferResult drawn = items_.draw(*world, true);
+        item_buffer_ms_ = items_watch.milliseconds();
         bin_objects(*world, drawn.ids);
         flat_ = std::move(drawn.flat);
         ids_ = std::make_shared<const IdImage>(std::move(drawn.ids));
@@ -296,7 +616,6 @@ void Preview::restart() {
     show_base();
     dirty_ = false;
     log_.restarts.push_back(watch.milliseconds());
-    update_title(true);
 }
 
 // Puts the current view's whole image in the texture: the item buffer's own views, or the flat
@@ -375,6 +694,65 @@ void Preview::present() {
         glBlitFramebuffer(0, 0, texture_width_, texture_height_, 0, height, width, 0,
                           GL_COLOR_BUFFER_BIT, GL_NEAREST);
     }
+    panel_->begin_frame();
+    if (panel_visible_) {
+        draw_overlay();
+        draw_panel();
+    }
+    panel_->end_frame();
+}
+
+std::optional<std::pair<int, int>> Preview::pixel_at(double x, double y) const {
+    if (!job_) return std::nullopt;
+    int window_width = 1, window_height = 1;
+    glfwGetWindowSize(window_.handle(), &window_width, &window_height);
+    const int px = static_cast<int>(std::floor(x * job_->width() / std::max(window_width, 1)));
+    const int py = static_cast<int>(std::floor(y * job_->height() / std::max(window_height, 1)));
+    if (px < 0 || py < 0 || px >= job_->width() || py >= job_->height()) return std::nullopt;
+    return std::pair{px, py};
+}
+
+void Preview::set(const std::string& name, const std::string& value) {
+    switch (set_panel_setting({frame_, scene_.render, accel_, view_, panel_visible_}, name, value)) {
+    case Effect::new_world:
+        world_.reset(); // a structure of another kind: built afresh, not refitted
+        dirty_ = true;
+        break;
+    case Effect::upload:
+        upload_needed_ = dirty_ = true;
+        break;
+    case Effect::retrace:
+        dirty_ = true;
+        break;
+    case Effect::view:
+        if (view_ == View::difference && frame_.mode == Mode::hybrid && job_ &&
+            !job_->compares_with_ray())
+            dirty_ = true;
+        show_base();
+        break;
+    case Effect::panel:
+        break;
+    }
+    std::printf("glint: panel: %s = %s\n", name.c_str(), value.c_str());
+    std::fflush(stdout);
+}
+
+void Preview::explain(int x, int y) {
+    const PrimarySource source{frame_.mode == Mode::hybrid ? ids_.get() : nullptr, frame_.resolve};
+    const int n = world_->settings().samples;
+    const PixelExplanation e = explain_pixel(*world_, source, x, y, n / 2, n / 2,
+                                             job_->refined(x, y));
+    Scene scene = scene_;
+    scene.camera = camera_.camera();
+    const std::string what = std::filesystem::path(options_.scene_name).filename().string() +
+                             " (" + std::to_string(scene.camera.width) + "x" +
+                             std::to_string(scene.camera.height) + "), preview, " +
+                             describe_settings();
+    explanation_ = explanation_text(scene, *world_, e, what);
+    overlay_ = tree_segments(*world_, e);
+    explained_ = std::pair{x, y};
+    std::fputs(explanation_.c_str(), stdout);
+    std::fflush(stdout);
 }
 
 // The window's framebuffer as shown (call after present(), before swapping).
@@ -393,35 +771,6 @@ void Preview::save_screenshot(const std::filesystem::path& path) {
     write_png(path, image);
     std::printf("glint: saved %s (%dx%d, %s)\n", path.c_str(), width, height,
                 std::string(view_label(view_)).c_str());
-}
-
-// The title is the overlay: view, settings, progress and timings. Set only when its text changes:
-// each change is an X event that would wake the idle loop again.
-void Preview::update_title(bool force) {
-    if (!force && title_watch_.milliseconds() < 250) return;
-    title_watch_.restart();
-    std::string title = "glint preview — " +
-                        std::filesystem::path(options_.scene_name).filename().string() + " — " +
-                        std::string(view_label(view_)) + " — " + describe_settings() + " — ";
-    if (job_) {
-        char progress[160];
-        const RayCounts rays = job_->rays();
-        if (job_->finished())
-            std::snprintf(progress, sizeof progress, "%dx%d traced in %.2f s, %.2f M rays",
-                          job_->width(), job_->height(), job_->seconds(),
-                          static_cast<double>(rays.total()) / 1e6);
-        else
-            std::snprintf(progress, sizeof progress, "%dx%d %s %d%%", job_->width(), job_->height(),
-                          job_->tiles_done() < job_->tile_count() ? "tracing" : "refining",
-                          100 * job_->tiles_done() / (job_->passes() * job_->tile_count()));
-        title += progress;
-        if (view_ == View::difference)
-            title += ", " + std::to_string(job_->differing_pixels()) + " pixels differ";
-    }
-    title += " — H: keys";
-    if (title == title_) return;
-    title_ = title;
-    glfwSetWindowTitle(window_.handle(), title_.c_str());
 }
 
 // The event loop (65 lines, one body so that pacing, restarts, uploads and the frame log read in
@@ -454,6 +803,11 @@ int Preview::run() {
             const char key = options_.keys[static_cast<std::size_t>(frames - 1)];
             on_key(std::toupper(static_cast<unsigned char>(key))); // GLFW's codes are ASCII
         }
+        if (frames == 1)
+            for (const std::string& assignment : options_.settings) {
+                const auto [name, value] = split_assignment(assignment);
+                set(name, value);
+            }
         if (options_.spin != 0 && frames < options_.frames) {
             camera_.orbit(options_.spin, 0);
             dirty_ = true;
@@ -466,13 +820,18 @@ int Preview::run() {
         }
         if (dirty_ && width > 0 && height > 0) restart();
         complete = upload_tiles() && job_ && job_->finished();
+        if (frames == 0 && options_.click) explain_pending_ = options_.click; // once, when traced
+        if (complete && explain_pending_) {
+            explain(explain_pending_->first, explain_pending_->second);
+            explain_pending_.reset();
+        }
         present();
         ++frames;
         const bool done = options_.scripted() && frames >= options_.frames &&
-                          static_cast<std::size_t>(frames) > options_.keys.size() && complete;
+                          static_cast<std::size_t>(frames) > options_.keys.size() && complete &&
+                          !explain_pending_;
         // The first frame puts the first image on screen: part of start-up.
         (frames == 1 ? log_.first_frame : log_.frames.emplace_back()) = frame_watch.milliseconds();
-        update_title(complete);
         if (screenshot_requested_ || (done && !options_.screenshot.empty())) {
             std::filesystem::path path = options_.screenshot;
             if (screenshot_requested_ || path.empty()) {
@@ -493,6 +852,7 @@ int Preview::run() {
     }
     log_.print();
     std::printf("item buffers drawn: %zu\n", items_.draws());
+    std::printf("settings: %s\n", describe_settings().c_str());
     if (job_ && job_->finished())
         std::printf("last trace: %dx%d in %.2f s on %d threads\n", job_->width(), job_->height(),
                     job_->seconds(), refiner_.threads());

@@ -11,6 +11,8 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 namespace glint {
 
@@ -27,9 +29,29 @@ struct PreviewOptions {
     double spin = 0;
     // Scripted: keys pressed one a frame from the second frame on, as their characters ('[', 'M').
     std::string keys;
+    // Scripted: the panel's settings, "name=value" (preview_setting_names), set through the panel's
+    // own path on the second frame, in order.
+    std::vector<std::string> settings;
+    // Scripted: the pixel clicked once the trace has finished (it is explained, and its tree drawn).
+    std::optional<std::pair<int, int>> click;
+    bool panel = true; // the panel (and a clicked pixel's tree) shown; G toggles it
 
     bool scripted() const { return frames > 0 || !screenshot.empty(); }
 };
+
+// The settings the panel controls, by the names --set takes: mode, raster, resolve, depth,
+// cutoff, tess, samples, aa, accel, view, panel.
+extern const std::vector<std::string> kPreviewSettings;
+
+// Where the panel first opens in a window of this size (window coordinates): along the right
+// edge, at most 360 wide, 45% of the window on a small one.
+struct PanelPlace {
+    float x, y, width, height;
+};
+PanelPlace panel_place(float window_width, float window_height);
+
+// Checks a "name=value" the panel would accept; throws std::invalid_argument saying what is wrong.
+void check_preview_setting(const std::string& assignment);
 
 // The keys, as H prints them (README's list is this text).
 extern const std::string_view kPreviewKeys;

@@ -52,6 +52,10 @@ class RefineJob {
     bool finished() const { return tiles_done() == passes_ * tile_count(); }
     // Pixels the second pass refines (all with uniform antialiasing); 0 before it starts.
     std::uint64_t refined_pixels() const;
+    // Whether pixel (x, y) took its grid (adaptive antialiasing, all passes); read once finished.
+    bool refined(int x, int y) const {
+        return !refine_.empty() && refine_[static_cast<std::size_t>(y) * width() + x] != 0;
+    }
 
     // Traces tiles until none is left or `cancel` is set; several threads may call it at once.
     void work(const std::atomic<bool>& cancel);

@@ -2,15 +2,21 @@
 // the window's framebuffer, which must show what the headless passes compute.
 #include "test_scenes.h"
 
+#include "frame/explain.h"
 #include "frame/frame.h"
 #include "preview/preview.h"
+#include "preview/ray_overlay.h"
 #include "preview/views.h"
 #include "trace/image_metrics.h"
 #include "trace/scene_loader.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 namespace glint {
 namespace {
@@ -19,8 +25,8 @@ namespace fs = std::filesystem;
 
 using testing::shipped;
 
-// Runs the scripted preview and returns its screenshot.
-Image screenshot(const Scene& scene, View view, const std::string& name) {
+// Runs the scripted preview and returns its screenshot (the panel hidden unless `panel`).
+Image screenshot(const Scene& scene, View view, const std::string& name, bool panel = false) {
     const fs::path path = fs::path(::testing::TempDir()) /
                           ("glint-preview-" + name + "-" + std::string(name_of(view)) + ".png");
     fs::remove(path);
@@ -30,6 +36,7 @@ Image screenshot(const Scene& scene, View view, const std::string& name) {
     options.frames = 2;
     options.screenshot = path;
     options.view = view;
+    options.panel = panel;
     try {
         EXPECT_EQ(run_preview(options), 0);
         return read_png(path);
@@ -114,6 +121,131 @@ TEST(Preview, ChangingDepthOrCutOffDrawsNoItemBuffer) {
     EXPECT_EQ(item_buffer_draws("E2T1"), 1u);   // resolve, a view, the tracer, the final view
     EXPECT_EQ(item_buffer_draws("[M]"), 2u);    // the raster mode: a new upload, a new draw
     EXPECT_EQ(item_buffer_draws("R=-"), 3u);    // reset (camera unchanged), tessellation twice
+}
+
+// Runs a scripted preview of `options` to a screenshot, with its standard output.
+std::pair<Image, std::string> scripted(PreviewOptions options, const std::string& name) {
+    const fs::path path = fs::path(::testing::TempDir()) / ("glint-preview-" + name + ".png");
+    fs::remove(path);
+    options.frames = std::max(options.frames, 2);
+    options.screenshot = path;
+    ::testing::internal::CaptureStdout();
+    int code = -1;
+    try {
+        code = run_preview(options);
+    } catch (const std::exception& e) {
+        ADD_FAILURE() << name << ": " << e.what();
+    }
+    const std::string out = ::testing::internal::GetCapturedStdout();
+    EXPECT_EQ(code, 0) << name;
+    return {fs::exists(path) ? read_png(path) : Image{}, out};
+}
+
+PreviewOptions preview_of(const std::string& name, int width, int height) {
+    PreviewOptions options;
+    options.scene = shipped(name, width, height);
+    options.scene.render.samples = 1;
+    options.scene_name = name + ".json";
+    return options;
+}
+
+// From "pixel (" to the end of the "rays:" line: the explanation without its first line, which
+// names how it was asked for (the preview, or the command line's settings).
+std::string explanation_body(const std::string& out) {
+    const std::size_t from = out.find("pixel (");
+    const std::size_t rays = out.find("rays: this tree", from);
+    if (from == std::string::npos || rays == std::string::npos) return "(none in: " + out + ")";
+    return out.substr(from, out.find('\n', rays) - from);
+}
+
+// How far point (x, y) lies from segment s, in pixels.
+double distance_to(const OverlaySegment& s, double x, double y) {
+    const double dx = s.x1 - s.x0, dy = s.y1 - s.y0;
+    const double length2 = dx * dx + dy * dy;
+    const double t =
+        length2 > 0 ? std::clamp(((x - s.x0) * dx + (y - s.y0) * dy) / length2, 0.0, 1.0) : 0.0;
+    return std::hypot(x - (s.x0 + t * dx), y - (s.y0 + t * dy));
+}
+
+// Issue 21: a scripted click draws the pixel's ray tree into the scene and prints the same
+// explanation as `glint explain`. Against the same run without the click, the screenshot changes
+// only inside the panel (which now shows the explanation) and along the tree's segments, as
+// tree_segments projects them: within 4 pixels of a line (2 wide, antialiased), 9 of the primary
+// ray's ring (radius 6). And it does change along them.
+TEST(Preview, AClickDrawsThePixelsTreeAlongItsRaysAndPrintsWhatExplainPrints) {
+    const int width = 640, height = 480, x = 130, y = 250; // the red ellipsoid, left of the panel
+    PreviewOptions options = preview_of("default", width, height);
+    const auto [before, unused] = scripted(options, "unclicked");
+    options.click = std::pair{x, y};
+    const auto [after, out] = scripted(options, "clicked");
+    ASSERT_EQ(before.width, width);
+    ASSERT_EQ(after.width, width);
+
+    const World world(options.scene);
+    const PixelExplanation e = explain_pixel(world, {}, x, y, 0, 0);
+    ASSERT_GT(e.rays.size(), 1u) << "the pixel should reflect";
+    const std::vector<OverlaySegment> segments = tree_segments(world, e);
+    const PanelPlace panel = panel_place(width, height);
+    int along = 0, stray = 0;
+    for (int py = 0; py < height; ++py) {
+        for (int px = 0; px < width; ++px) {
+            if (!std::equal(before.pixel(px, py), before.pixel(px, py) + 3, after.pixel(px, py)))
+            {
+                if (px >= panel.x - 2 && px <= panel.x + panel.width + 2 &&
+                    py <= panel.y + panel.height + 2)
+                    continue;
+                bool near = false;
+                for (const OverlaySegment& s : segments)
+                    near |= distance_to(s, px + 0.5, py + 0.5) <=
+                            (s.kind == OverlaySegment::Kind::primary ? 9 : 4);
+                (near ? along : stray) += 1;
+            }
+        }
+    }
+    EXPECT_EQ(stray, 0) << "pixels changed away from the tree and the panel";
+    EXPECT_GT(along, 100) << "the tree was not drawn";
+
+    const std::string command = std::string("'" GLINT_BINARY "' explain ") + GLINT_SOURCE_DIR +
+                                "/scenes/default.json " + std::to_string(x) + " " +
+                                std::to_string(y) + " --size 640x480 --samples 1";
+    FILE* pipe = popen(command.c_str(), "r");
+    ASSERT_NE(pipe, nullptr);
+    std::string cli;
+    char buffer[4096];
+    while (const std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) cli.append(buffer, n);
+    EXPECT_EQ(pclose(pipe), 0);
+    EXPECT_EQ(explanation_body(out), explanation_body(cli));
+}
+
+// The panel's settings, set through its own path (scripted --set): the trace follows them (the
+// screenshot is the headless render with those settings) and the preview reports them.
+TEST(Preview, ThePanelsControlsChangeWhatIsTraced) {
+    PreviewOptions options = preview_of("default", 320, 240);
+    options.settings = {"mode=ray", "depth=0", "accel=kd", "panel=off"};
+    const auto [shown, out] = scripted(options, "panel-settings");
+    EXPECT_NE(out.find("glint: panel: depth = 0"), std::string::npos) << out;
+    EXPECT_NE(out.find("settings: ray, depth 0, cut-off 0.01, kd, view final"), std::string::npos)
+        << out;
+    Scene expected = options.scene;
+    expected.render.max_depth = 0;
+    FrameSettings ray;
+    ray.mode = Mode::ray;
+    const Frame headless = render_frame(World(expected, AccelKind::kd), ray);
+    EXPECT_EQ(shown.rgb, headless.result.image.rgb);
+    EXPECT_NE(shown.rgb, render_frame(World(options.scene), ray).result.image.rgb);
+}
+
+// G hides the panel (and an explained tree): the screenshot is then the render alone.
+TEST(Preview, GHidesThePanelForCleanScreenshots) {
+    PreviewOptions options = preview_of("default", 320, 240);
+    const Image render = render_frame(World(options.scene), FrameSettings{}).result.image;
+    const auto [with_panel, unused] = scripted(options, "with-panel");
+    EXPECT_NE(with_panel.rgb, render.rgb);
+    options.keys = "G";
+    options.click = std::pair{60, 150};
+    const auto [hidden, out] = scripted(options, "panel-hidden");
+    EXPECT_NE(out.find("pixel (60, 150)"), std::string::npos);
+    EXPECT_LE(compare_images(render, hidden).fraction_over_one, 1e-4);
 }
 
 } // namespace
