@@ -204,6 +204,9 @@ std::string explanation_text(const Scene& scene, const World& world, const Pixel
     if (e.n > 1)
         out += ", sample (" + std::to_string(e.a) + ", " + std::to_string(e.b) + ") of its " +
                std::to_string(e.n) + "x" + std::to_string(e.n) + " grid";
+    if (e.n > 1 && !e.averaged)
+        out += " (adaptive antialiasing left this pixel unrefined: the render traced this centre "
+               "sample alone)";
     out += "\n";
     if (const auto& item = e.item_buffer) {
         out += item->first_pass ? "item buffer (the pixel centre, in the first pass; the grid is "
