@@ -61,9 +61,11 @@ struct Facts {
     DVec3 to_scene(Vec3 p) const { return DVec3(p) + eye; } // the tracer's world is eye-relative
     std::string object(std::uint32_t index) const {
         std::string text = "object " + std::to_string(index);
-        const std::string& name = scene.objects[index].name;
-        if (!name.empty()) text += " \"" + name + "\"";
+        if (!name(index).empty()) text += " \"" + name(index) + "\"";
         return text;
+    }
+    std::string name(std::uint32_t index) const {
+        return index < scene.object_names.size() ? scene.object_names[index] : std::string();
     }
     const char* shape(std::uint32_t index) const {
         return name_of(scene.objects[index].shape).data();
@@ -254,7 +256,7 @@ std::string explanation_json(const Scene& scene, const World& world, const Pixel
             const std::uint32_t o = r.hit.object;
             const Ray& local = e.object_rays[i];
             ray["hit"] = {{"object", o},
-                          {"name", scene.objects[o].name},
+                          {"name", facts.name(o)},
                           {"shape", facts.shape(o)},
                           {"transform", facts.transform(o)},
                           {"t", real(r.hit.t)},

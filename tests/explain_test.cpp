@@ -28,8 +28,9 @@ TEST(Explain, ReportsTheRenderedBytesAtHundredsOfPixelsOfEveryShippedScene) {
                 const Phong& m = world.geometry()->materials[o.material];
                 return m.reflectivity > 0 || m.transmission > 0;
             });
-        if (recursive)
+        if (recursive) {
             EXPECT_GT(secondary, 10) << name << ": few pixels with reflected rays were explained";
+        }
     }
 }
 

@@ -419,7 +419,7 @@ INSTANTIATE_TEST_SUITE_P(ShippedScenes, HybridTest, ::testing::ValuesIn(every_sc
 // the same item buffer and resolve; with trust too, whose images may differ from ray mode's.
 TEST(HybridExplain, ReportsTheRenderedBytesAtHundredsOfPixelsOfEveryShippedScene) {
     for (const char* name : testing::kShippedScenes) {
-        for (const auto [raster, resolve] : {std::pair{RasterMode::automatic, Resolve::exact},
+        for (const auto& [raster, resolve] : {std::pair{RasterMode::automatic, Resolve::exact},
                                              std::pair{RasterMode::mesh, Resolve::trust}}) {
             const Scene scene = testing::shipped(name, 160, 120);
             const World world(scene);

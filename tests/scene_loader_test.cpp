@@ -182,3 +182,21 @@ TEST(SceneLoader, EveryShippedSceneLoads) {
 
 } // namespace
 } // namespace glint
+
+namespace glint {
+namespace {
+
+// Objects' optional names (`glint explain` shows them) line up with the objects, unnamed ones
+// empty; a name must be a string.
+TEST(SceneLoader, ObjectNamesLineUpWithTheObjects) {
+    const Scene scene = parse_scene(R"({"objects": [
+        {"shape": "sphere"}, {"name": "box", "shape": "box"}, {"shape": "plane"},
+        {"name": "disk", "shape": "disk"}]})",
+                                    "names.json");
+    EXPECT_EQ(scene.object_names, (std::vector<std::string>{"", "box", "", "disk"}));
+    EXPECT_THROW(parse_scene(R"({"objects": [{"name": 3, "shape": "sphere"}]})", "n.json"),
+                 SceneError);
+}
+
+} // namespace
+} // namespace glint

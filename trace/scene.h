@@ -83,7 +83,6 @@ struct SceneObject {
     float top_radius = 0.0f; // cones only
     bool open = false;       // cylinders and cones: no end caps (NFF's `c`)
     std::uint32_t mesh = 0;  // index into Scene::meshes for triangles and meshes
-    std::string name;        // optional, for people (`glint explain`); every part of an OBJ file
 };
 
 // Antialiasing (DESIGN §11, docs/ANTIALIASING.md): every pixel the mean of its N×N sample grid,
@@ -117,6 +116,9 @@ struct Scene {
     std::vector<Material> materials; // index 0 is the default material
     std::vector<std::string> material_names;
     std::vector<SceneObject> objects;
+    // Objects' optional names, for people (`glint explain`), by object index; may be shorter
+    // than `objects` (unnamed ones at the end). Every part of an OBJ file has its object's name.
+    std::vector<std::string> object_names;
     std::vector<TriangleMesh> meshes;
     RenderSettings render;
     // What the loader left out or changed, for the user to read (NFF's transmission, ...).

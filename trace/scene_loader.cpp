@@ -426,7 +426,6 @@ class Loader {
             }
             o.material = static_cast<std::uint32_t>(found - scene.material_names.begin());
         }
-        if (has(node, "name")) o.name = string(node.child("name"));
         if (has(node, "transform")) o.transform = transform(node.child("transform"));
         if (has(node, "top_radius"))
             o.top_radius = static_cast<float>(number_in(node.child("top_radius"), 0, 1e6));
@@ -449,6 +448,11 @@ class Loader {
             placed.push_back(o);
         }
         for (const SceneObject& p : placed) check_reach(node, p, scene);
+        if (has(node, "name")) {
+            scene.object_names.resize(scene.objects.size());
+            scene.object_names.insert(scene.object_names.end(), placed.size(),
+                                      string(node.child("name")));
+        }
         scene.objects.insert(scene.objects.end(), placed.begin(), placed.end());
     }
 
