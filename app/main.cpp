@@ -1,17 +1,43 @@
 // glint: renders scenes by ray tracing (Ray Tracing III). Exit codes: 0 ok, 1 runtime failure,
 // 2 usage or bad input.
 #include "app/commands.h"
+#include "app/distributed.h"
 
 #include <iostream>
 
-int main(int argc, char** argv) {
-    glint::Cli cli;
-    try {
-        cli.app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        if (e.get_exit_code() == 0) return cli.app.exit(e); // --help, --version
-        std::cerr << "glint: error: " << e.what() << "\nRun 'glint --help' for usage.\n";
+namespace {
+
+// Under mpirun: the command, or a refusal for the commands that do not run across ranks (every
+// rank would do the whole work and write the same files).
+int run_command(const glint::Cli& cli) {
+    const glint::Command& command = cli.chosen();
+    if (glint::on_ranks() && command.cli->get_name() != "render") {
+        if (glint::rank() == 0)
+            std::cerr << "glint: error: only `glint render` runs across MPI ranks; run `glint "
+                      << command.cli->get_name() << "` without mpirun\n";
         return 2;
     }
-    return cli.chosen().run();
+    return command.run();
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    if (const int code = glint::start_ranks(); code >= 0) return code;
+    glint::Cli cli;
+    int code = 0;
+    try {
+        cli.app.parse(argc, argv);
+        code = run_command(cli);
+    } catch (const CLI::ParseError& e) {
+        if (e.get_exit_code() == 0) {
+            code = glint::rank() == 0 ? cli.app.exit(e) : 0; // --help, --version
+        } else {
+            if (glint::rank() == 0)
+                std::cerr << "glint: error: " << e.what() << "\nRun 'glint --help' for usage.\n";
+            code = 2;
+        }
+    }
+    glint::finish_ranks();
+    return code;
 }

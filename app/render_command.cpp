@@ -1,4 +1,5 @@
 // `glint render`: load, prepare, draw the item buffer (hybrid), trace, write.
+#include "app/distributed.h"
 #include "app/options.h"
 #include "app/phase_json.h"
 #include "app/progress.h"
@@ -13,6 +14,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 namespace glint {
 namespace {
@@ -34,19 +36,20 @@ struct RenderJob {
     Scene scene;
 };
 
-// Every check on the input, before anything is rendered or written.
+// Every check on the input, before anything is rendered or written. On MPI ranks only rank 0
+// writes, so only rank 0 checks where it writes; every rank reads the scene.
 RenderJob prepare(const RenderArgs& args) {
     RenderJob job{args.scene.scene_path(), args.output, {}};
     if (job.output.empty()) job.output = fs::path("out") / job.scene_path.stem().concat(".png");
     if (job.output.extension() != ".png")
         throw UsageError("-o " + job.output.string() + ": glint writes PNG files (.png)");
-    if (args.output.empty()) create_output_directory(job.output);
-    check_output(job.output, "-o");
-    if (!args.stats.empty()) check_output(args.stats, "--stats");
-    if (!args.aa_map.empty()) {
-        if (fs::path(args.aa_map).extension() != ".png")
-            throw UsageError("--aa-map " + args.aa_map + ": glint writes PNG files (.png)");
-        check_output(args.aa_map, "--aa-map");
+    if (!args.aa_map.empty() && fs::path(args.aa_map).extension() != ".png")
+        throw UsageError("--aa-map " + args.aa_map + ": glint writes PNG files (.png)");
+    if (rank() == 0) {
+        if (args.output.empty()) create_output_directory(job.output);
+        check_output(job.output, "-o");
+        if (!args.stats.empty()) check_output(args.stats, "--stats");
+        if (!args.aa_map.empty()) check_output(args.aa_map, "--aa-map");
     }
     job.scene = args.scene.load();
     if (!args.aa_map.empty() &&
@@ -192,31 +195,78 @@ Image refinement_map(const RenderResult& result) {
     return map;
 }
 
+// Several ranks: every rank's figures on rank 0, and the frame's counters summed over ranks
+// (each rank counted its own tiles' rays and resolves). Prints the per-rank table.
+void combine_ranks(Frame& frame, const RankFigures& mine, int threads) {
+    RayCounts& rays = frame.result.rays;
+    PrimaryStats& p = frame.primary_stats;
+    std::vector<std::uint64_t> sums = {rays.primary,  rays.shadow,  rays.reflection,
+                                       rays.transmission, p.exact_intersections, p.fallbacks,
+                                       p.corrected,   p.edges,     p.checked,
+                                       p.tests,       p.traced};
+    sum_over_ranks(sums);
+    rays = {sums[0], sums[1], sums[2], sums[3]};
+    p.exact_intersections = sums[4], p.fallbacks = sums[5], p.corrected = sums[6];
+    p.edges = sums[7], p.checked = sums[8], p.tests = sums[9], p.traced = sums[10];
+    const std::vector<RankFigures> all = gather_figures(mine);
+    if (rank() != 0) return;
+    std::printf("ranks: %d × %d threads, tiles interleaved, pixels exchanged after each pass\n",
+                ranks(), threads);
+    for (std::size_t r = 0; r < all.size(); ++r) {
+        const RankFigures& f = all[r];
+        std::printf("  rank %zu: %.0f tiles, %.2f M rays; load %.3f s, structures %.3f s, "
+                    "GL %.3f s, trace %.3f s, exchange %.3f s\n",
+                    r, f.tiles, f.rays / 1e6, f.load, f.prepare, f.gl, f.trace, f.exchange);
+    }
+}
+
 int run_render(const RenderArgs& args) {
     const Stopwatch total;
     Stopwatch phase;
-    const RenderJob job = prepare(args);
+    RenderJob job;
+    // On ranks, every rank checks its input and they agree before any of them renders.
+    if (const int status = agree_on([&] { job = prepare(args); })) return status;
     const Scene& scene = job.scene;
     const double load_seconds = phase.lap();
     World world(scene, args.scene.accel_kind());
     if (!args.stats.empty()) world.count_traversals(true);
     const double prepare_seconds = phase.lap();
 
+    const std::unique_ptr<TileExchange> exchange = on_ranks() ? make_exchange() : nullptr;
+    FrameSettings settings = args.frame.settings();
+    settings.exchange = exchange.get();
     std::atomic<int> tiles_done{0};
     Frame frame;
     {
-        // Primary hits and shading each visit every tile once (adaptive antialiasing: twice).
-        const Progress progress(
-            "rendering", progress_steps(scene.render, scene.camera.width, scene.camera.height),
-            tiles_done);
-        frame = render_frame(world, args.frame.settings(), &tiles_done);
+        // Primary hits and shading each visit every tile once (adaptive antialiasing: twice);
+        // on ranks, rank 0 shows its own share.
+        const int steps =
+            progress_steps(scene.render, scene.camera.width, scene.camera.height) / ranks();
+        const std::optional<Progress> progress =
+            rank() == 0 ? std::optional<Progress>(std::in_place, "rendering", steps, tiles_done)
+                        : std::nullopt;
+        frame = render_frame(world, settings, &tiles_done);
+    }
+    const double frame_seconds = phase.lap();
+    const int threads =
+        args.frame.threads > 0 ? args.frame.threads : tbb::this_task_arena::max_concurrency();
+    if (on_ranks()) {
+        const PhaseTimes& t = frame.times;
+        const double gl = t.context + t.compile + t.upload + t.raster;
+        const double exchanged = exchange_seconds(*exchange);
+        const int tiles = tile_count(scene.camera.width, scene.camera.height);
+        const RayCounts rays = frame.result.rays;
+        combine_ranks(frame,
+                      {load_seconds, prepare_seconds, gl, frame_seconds - gl - exchanged, exchanged,
+                       static_cast<double>((tiles - rank() + ranks() - 1) / ranks()),
+                       static_cast<double>(rays.total())},
+                      threads);
+        if (rank() != 0) return 0;
     }
     phase.restart();
     write_png(job.output, frame.result.image);
     const double write_seconds = phase.seconds();
     const double total_seconds = total.seconds();
-    const int threads =
-        args.frame.threads > 0 ? args.frame.threads : tbb::this_task_arena::max_concurrency();
     const RenderReport report{
         args,    job,          world,           frame,         cutoff_bound(scene, frame.result),
         threads, load_seconds, prepare_seconds, write_seconds, total_seconds};
@@ -240,7 +290,7 @@ Command add_render_command(CLI::App& app) {
                     "Adaptive antialiasing: also write a PNG of the pixels that took the grid "
                     "(the others darkened)");
     return {cmd, [args] { prepare(*args); },
-            [args] { return guarded([&] { return run_render(*args); }); }};
+            [args] { return guarded_on_ranks([&] { return run_render(*args); }); }};
 }
 
 } // namespace glint

@@ -53,7 +53,7 @@ Frame render_frame(const World& world, const FrameSettings& settings,
     Frame frame;
     draw_item_buffers(world, settings, frame);
     frame.result = trace_frame(world, primary_source(frame, settings.resolve), frame.primary_stats,
-                               {settings.threads, tiles_done}, frame.times);
+                               {settings.threads, tiles_done, settings.exchange}, frame.times);
     return frame;
 }
 
@@ -65,7 +65,7 @@ Frame render_frame(const Scene& scene, std::optional<AccelKind> accel,
             throw std::invalid_argument("double precision renders in ray mode only");
         Frame frame;
         frame.result = render_ray_frame(Precision::f64, scene, accel,
-                                        {settings.threads, tiles_done}, frame.times);
+                                        {settings.threads, tiles_done, settings.exchange}, frame.times);
         return frame;
     }
     double prepare = 0;

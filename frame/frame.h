@@ -31,6 +31,9 @@ struct FrameSettings {
     // the image may differ from ray mode's (by design: it finds what pixel centres miss), so it
     // is off by default; without it adaptive hybrid equals ray mode byte for byte.
     bool aa_sample_ids = false;
+    // One process of several rendering this frame (app/distributed.h): it traces its own tiles
+    // and exchanges pixels with the others after each pass. Null: the whole frame here.
+    const TileExchange* exchange = nullptr;
 };
 
 // The one result of a render, in either mode and either precision.

@@ -60,8 +60,15 @@ std::vector<std::uint32_t> object_ids(const std::vector<Hit>& primary) {
 RenderResult trace_frame(const World& world, const PrimarySource& source, PrimaryStats& stats,
                          const TileProgress& progress, PhaseTimes& times) {
     const RenderSettings& settings = world.settings();
-    if (settings.samples > 1 && settings.antialias == Antialias::uniform)
-        return render_uniform_grids(world, source, stats, progress, times);
+    // Several processes: after each pass every process gets the others' tiles.
+    const auto share = [&](RenderResult& result, std::vector<std::uint64_t>* keys) {
+        if (progress.exchange) progress.exchange->share(result, keys);
+    };
+    if (settings.samples > 1 && settings.antialias == Antialias::uniform) {
+        RenderResult result = render_uniform_grids(world, source, stats, progress, times);
+        share(result, nullptr);
+        return result;
+    }
     // One sample per pixel, at its centre: the whole image with N = 1, and adaptive
     // antialiasing's first pass.
     const bool adaptive = settings.samples > 1;
@@ -71,6 +78,7 @@ RenderResult trace_frame(const World& world, const PrimarySource& source, Primar
     RenderResult result = timed(times.shading, [&] {
         return shade_image(world, primary, progress, adaptive ? &path_keys : nullptr);
     });
+    share(result, adaptive ? &path_keys : nullptr);
     if (adaptive) refine_adaptively(world, source, path_keys, result, stats, progress, times);
     return result;
 }

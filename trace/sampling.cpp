@@ -198,13 +198,16 @@ void refine_adaptively(const World& world, const PrimarySource& source,
     });
     const Image first = result.image;
     supersample(world, source, &result.refined, result, stats, progress, times);
+    if (progress.exchange) progress.exchange->share(result, nullptr);
     // The rounds' scans count as shading; supersample times its own passes.
     const double timed_before = times.primary + times.shading;
     const Stopwatch rounds;
     spread_refinement(
         first, result.image, result.refined, settings.aa_threshold,
         [&](const std::vector<std::uint8_t>& next) {
-            supersample(world, source, &next, result, stats, {progress.threads, nullptr}, times);
+            supersample(world, source, &next, result, stats,
+                        {progress.threads, nullptr, progress.exchange}, times);
+            if (progress.exchange) progress.exchange->share(result, nullptr);
             return true;
         });
     times.shading += rounds.seconds() - (times.primary + times.shading - timed_before);

@@ -9,14 +9,39 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdint>
+#include <vector>
 
 namespace glint {
 
 inline constexpr int kTileSize = 32;
 
+struct RenderResult; // trace/precision.h
+
+// One frame rendered by several processes (docs/DISTRIBUTED.md): this one, `rank` of `ranks`,
+// traces tiles rank, rank + ranks, rank + 2·ranks, … (interleaved, so that every process gets
+// tiles from every part of the image), and after each pass `share` gives every process the
+// others' pixels, so that a pass that reads its neighbours (adaptive antialiasing) reads the
+// whole image, as in one process.
+class TileExchange {
+  public:
+    TileExchange(int rank, int ranks) : rank_(rank), ranks_(ranks) {}
+    virtual ~TileExchange() = default;
+    int rank() const { return rank_; }
+    int ranks() const { return ranks_; }
+    bool owns(int tile) const { return tile % ranks_ == rank_; }
+    // After a pass over this process's tiles: their pixels of `result` (colour, cut-off weight,
+    // id) and of `keys` (where given) to every process, the others' into this one's.
+    virtual void share(RenderResult& result, std::vector<std::uint64_t>* keys) const = 0;
+
+  private:
+    int rank_, ranks_;
+};
+
 struct TileProgress {
     int threads = 0;                        // 0: all cores
     std::atomic<int>* tiles_done = nullptr; // counted as tiles finish
+    const TileExchange* exchange = nullptr; // one process of several: its tiles only
 };
 
 inline int tile_count(int width, int height) {
@@ -46,7 +71,8 @@ template <class Body> void for_each_in_blocks(int x0, int y0, int x1, int y1, co
                 for (int x = bx; x < std::min(bx + kBlockSize, x1); ++x) body(x, y);
 }
 
-// Calls body(x0, y0, x1, y1) for each tile of a width×height image, in parallel.
+// Calls body(x0, y0, x1, y1) for each tile of a width×height image (each this process owns, with
+// an exchange), in parallel.
 template <class Body>
 void for_each_tile(int width, int height, const TileProgress& progress, const Body& body) {
     const int tiles_x = (width + kTileSize - 1) / kTileSize;
@@ -56,6 +82,7 @@ void for_each_tile(int width, int height, const TileProgress& progress, const Bo
             tbb::blocked_range<int>(0, tile_count(width, height), 1),
             [&](const tbb::blocked_range<int>& r) {
                 for (int tile = r.begin(); tile != r.end(); ++tile) {
+                    if (progress.exchange && !progress.exchange->owns(tile)) continue;
                     const int x0 = (tile % tiles_x) * kTileSize, y0 = (tile / tiles_x) * kTileSize;
                     body(x0, y0, std::min(x0 + kTileSize, width), std::min(y0 + kTileSize, height));
                     if (progress.tiles_done)

@@ -1,0 +1,243 @@
+#include "app/distributed.h"
+
+#include "app/options.h"
+#include "trace/precision.h"
+#include "trace/scene_loader.h"
+
+#include <climits>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+#ifdef GLINT_HAVE_MPI
+#include <mpi.h>
+#endif
+
+namespace glint {
+
+namespace {
+
+// How many processes mpirun started with this one, from the launcher's environment (Open MPI,
+// or PMI/PMIx launchers); 1 when glint was started by hand.
+int launched_ranks() {
+    for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"})
+        if (const char* value = std::getenv(name)) return std::max(1, std::atoi(value));
+    return 1;
+}
+
+[[maybe_unused]] int launched_rank() {
+    for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"})
+        if (const char* value = std::getenv(name)) return std::atoi(value);
+    return 0;
+}
+
+int rank_ = 0, ranks_ = 1;
+bool joined_ = false;
+
+// The exit code a single run gives for an exception (guarded(), app/options.cpp).
+int exit_code_of(const std::exception& e) {
+    return dynamic_cast<const UsageError*>(&e) || dynamic_cast<const SceneError*>(&e) ? 2 : 1;
+}
+
+} // namespace
+
+int rank() {
+    return rank_;
+}
+int ranks() {
+    return ranks_;
+}
+
+#ifdef GLINT_HAVE_MPI
+
+int start_ranks() {
+    if (launched_ranks() <= 1) return -1;
+    int provided = 0;
+    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+    joined_ = true;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+    MPI_Comm_size(MPI_COMM_WORLD, &ranks_);
+    return -1;
+}
+
+void finish_ranks() {
+    if (joined_) MPI_Finalize();
+    joined_ = false;
+}
+
+int agree_on(const std::function<void()>& step) {
+    if (!on_ranks()) {
+        step();
+        return 0;
+    }
+    int status = 0;
+    std::string message;
+    try {
+        step();
+    } catch (const std::exception& e) {
+        status = exit_code_of(e), message = e.what();
+    }
+    int worst = 0;
+    MPI_Allreduce(&status, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+    if (worst == 0) return 0;
+    // The message of the lowest failing rank, on rank 0: every rank reads the same files, so it is
+    // usually rank 0's own.
+    int failing = status != 0 ? rank_ : ranks_, first = 0;
+    MPI_Allreduce(&failing, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+    if (first != 0) {
+        if (rank_ == first) {
+            const int length = static_cast<int>(message.size());
+            MPI_Send(&length, 1, MPI_INT, 0, 0, MPI_COMM_WORLD);
+            MPI_Send(message.data(), length, MPI_CHAR, 0, 1, MPI_COMM_WORLD);
+        } else if (rank_ == 0) {
+            int length = 0;
+            MPI_Recv(&length, 1, MPI_INT, first, 0, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+            message.resize(static_cast<std::size_t>(length));
+            MPI_Recv(message.data(), length, MPI_CHAR, first, 1, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+            message = "rank " + std::to_string(first) + ": " + message;
+        }
+    }
+    if (rank_ == 0) std::fprintf(stderr, "glint: error: %s\n", message.c_str());
+    return worst;
+}
+
+int guarded_on_ranks(const std::function<int()>& body) {
+    if (!on_ranks()) return guarded(body);
+    try {
+        return body();
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "glint: error: rank %d: %s\n", rank_, e.what());
+        std::fflush(stderr);
+        MPI_Abort(MPI_COMM_WORLD, exit_code_of(e));
+        return exit_code_of(e);
+    }
+}
+
+namespace {
+
+// Interleaved tiles; each pass's pixels of this rank's tiles, packed tile by tile (colour 3
+// bytes, cut-off weight 4, id 4, path key 8 when asked), gathered by every rank.
+class MpiExchange final : public TileExchange {
+  public:
+    MpiExchange() : TileExchange(glint::rank(), glint::ranks()) {}
+    double seconds() const { return seconds_; }
+
+    void share(RenderResult& result, std::vector<std::uint64_t>* keys) const override {
+        const Stopwatch watch;
+        const int width = result.image.width, height = result.image.height;
+        const int tiles_x = (width + kTileSize - 1) / kTileSize, tiles = tile_count(width, height);
+        const std::size_t pixel_bytes = 3 + 4 + 4 + (keys ? 8 : 0);
+        // Calls visit(i) for each pixel index of tile t, in row order.
+        const auto for_pixels = [&](int t, const auto& visit) {
+            const int x0 = (t % tiles_x) * kTileSize, y0 = (t / tiles_x) * kTileSize;
+            for (int y = y0; y < std::min(y0 + kTileSize, height); ++y)
+                for (int x = x0; x < std::min(x0 + kTileSize, width); ++x)
+                    visit(static_cast<std::size_t>(y) * width + x);
+        };
+        std::vector<char> mine;
+        for (int t = rank(); t < tiles; t += ranks()) {
+            for_pixels(t, [&](std::size_t i) {
+                const std::size_t at = mine.size();
+                mine.resize(at + pixel_bytes);
+                char* p = &mine[at];
+                std::memcpy(p, &result.image.rgb[3 * i], 3);
+                std::memcpy(p + 3, &result.omitted_weight[i], 4);
+                std::memcpy(p + 7, &result.ids[i], 4);
+                if (keys) std::memcpy(p + 11, &(*keys)[i], 8);
+            });
+        }
+        if (mine.size() > static_cast<std::size_t>(INT_MAX))
+            throw std::runtime_error("a rank's share of the frame is over 2 GiB: use more ranks");
+        const int count = static_cast<int>(mine.size());
+        std::vector<int> counts(static_cast<std::size_t>(ranks())), offsets(counts.size());
+        MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+        long long total = 0;
+        for (std::size_t r = 0; r < counts.size(); ++r) {
+            if (total > INT_MAX) throw std::runtime_error("the frame is over 2 GiB to exchange");
+            offsets[r] = static_cast<int>(total), total += counts[r];
+        }
+        std::vector<char> all(static_cast<std::size_t>(total));
+        MPI_Allgatherv(mine.data(), count, MPI_BYTE, all.data(), counts.data(), offsets.data(),
+                       MPI_BYTE, MPI_COMM_WORLD);
+        for (int r = 0; r < ranks(); ++r) {
+            if (r == rank()) continue;
+            const char* p = all.data() + offsets[static_cast<std::size_t>(r)];
+            for (int t = r; t < tiles; t += ranks()) {
+                for_pixels(t, [&](std::size_t i) {
+                    std::memcpy(&result.image.rgb[3 * i], p, 3);
+                    std::memcpy(&result.omitted_weight[i], p + 3, 4);
+                    std::memcpy(&result.ids[i], p + 7, 4);
+                    if (keys) std::memcpy(&(*keys)[i], p + 11, 8);
+                    p += pixel_bytes;
+                });
+            }
+        }
+        seconds_ += watch.seconds();
+    }
+
+  private:
+    mutable double seconds_ = 0;
+};
+
+} // namespace
+
+std::unique_ptr<TileExchange> make_exchange() {
+    return std::make_unique<MpiExchange>();
+}
+
+double exchange_seconds(const TileExchange& exchange) {
+    return static_cast<const MpiExchange&>(exchange).seconds();
+}
+
+std::vector<RankFigures> gather_figures(const RankFigures& mine) {
+    std::vector<RankFigures> all(rank_ == 0 ? static_cast<std::size_t>(ranks_) : 0);
+    constexpr int kFields = sizeof(RankFigures) / sizeof(double);
+    MPI_Gather(&mine, kFields, MPI_DOUBLE, all.data(), kFields, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    return all;
+}
+
+void sum_over_ranks(std::vector<std::uint64_t>& values) {
+    MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_UINT64_T,
+                  MPI_SUM, MPI_COMM_WORLD);
+}
+
+#else // a build without MPI: one process, always
+
+int start_ranks() {
+    if (launched_ranks() <= 1) return -1;
+    if (launched_rank() == 0)
+        std::fprintf(stderr, "glint: error: started by mpirun with %d ranks, but this glint was "
+                             "built without MPI (install libopenmpi-dev and build again; "
+                             "./glint does both)\n",
+                     launched_ranks());
+    return 2;
+}
+
+void finish_ranks() {}
+
+int agree_on(const std::function<void()>& step) {
+    step();
+    return 0;
+}
+
+int guarded_on_ranks(const std::function<int()>& body) {
+    return guarded(body);
+}
+
+std::unique_ptr<TileExchange> make_exchange() {
+    return nullptr;
+}
+
+double exchange_seconds(const TileExchange&) {
+    return 0;
+}
+
+std::vector<RankFigures> gather_figures(const RankFigures& mine) {
+    return {mine};
+}
+
+void sum_over_ranks(std::vector<std::uint64_t>&) {}
+
+#endif
+
+} // namespace glint
