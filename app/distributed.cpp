@@ -196,6 +196,22 @@ std::vector<RankFigures> gather_figures(const RankFigures& mine) {
     return all;
 }
 
+std::vector<std::vector<double>> gather_numbers(const std::vector<double>& mine) {
+    const int count = static_cast<int>(mine.size());
+    std::vector<int> counts(static_cast<std::size_t>(ranks_)), offsets(counts.size());
+    MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+    int total = 0;
+    for (std::size_t r = 0; r < counts.size(); ++r) offsets[r] = total, total += counts[r];
+    std::vector<double> all(rank_ == 0 ? static_cast<std::size_t>(total) : 0);
+    MPI_Gatherv(mine.data(), count, MPI_DOUBLE, all.data(), counts.data(), offsets.data(),
+                MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    std::vector<std::vector<double>> out;
+    if (rank_ == 0)
+        for (std::size_t r = 0; r < counts.size(); ++r)
+            out.emplace_back(all.begin() + offsets[r], all.begin() + offsets[r] + counts[r]);
+    return out;
+}
+
 void sum_over_ranks(std::vector<std::uint64_t>& values) {
     MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_UINT64_T,
                   MPI_SUM, MPI_COMM_WORLD);
@@ -233,6 +249,10 @@ double exchange_seconds(const TileExchange&) {
 }
 
 std::vector<RankFigures> gather_figures(const RankFigures& mine) {
+    return {mine};
+}
+
+std::vector<std::vector<double>> gather_numbers(const std::vector<double>& mine) {
     return {mine};
 }
 

@@ -1,4 +1,5 @@
-// One frame across MPI ranks (docs/DISTRIBUTED.md): `mpirun -np N glint render …`. Every rank
+// One frame across MPI ranks (docs/DISTRIBUTED.md): `mpirun -np N glint render …` (and a
+// `glint tradeoff` sweep spread over ranks, one setting per rank at a time). Every rank
 // loads the scene and builds its own structures; tiles are interleaved over the ranks
 // (trace/tiles.h's TileExchange) and exchanged after each pass; rank 0 writes the PNG and
 // prints the report. Without mpirun, or in a build without MPI, glint is one process as always:
@@ -54,6 +55,9 @@ struct RankFigures {
     double rays = 0;              // rays cast
 };
 std::vector<RankFigures> gather_figures(const RankFigures& mine);
+
+// Every rank's numbers on rank 0 (one vector per rank there; empty elsewhere).
+std::vector<std::vector<double>> gather_numbers(const std::vector<double>& mine);
 
 // Sums over ranks, on every rank.
 void sum_over_ranks(std::vector<std::uint64_t>& values);

@@ -11,9 +11,11 @@ namespace {
 // rank would do the whole work and write the same files).
 int run_command(const glint::Cli& cli) {
     const glint::Command& command = cli.chosen();
-    if (glint::on_ranks() && command.cli->get_name() != "render") {
+    const std::string name = command.cli->get_name();
+    if (glint::on_ranks() && name != "render" && name != "tradeoff") {
         if (glint::rank() == 0)
-            std::cerr << "glint: error: only `glint render` runs across MPI ranks; run `glint "
+            std::cerr << "glint: error: only `glint render` and `glint tradeoff` run across MPI "
+                         "ranks; run `glint "
                       << command.cli->get_name() << "` without mpirun\n";
         return 2;
     }

@@ -3,6 +3,7 @@
 // exact one: ray traced in double precision, reflections followed as deep as glint allows with
 // no weight cut-off. Writes a CSV (a row per run), a plot per scene of time against error with
 // the Pareto front (gnuplot, SVG and PNG) and a markdown summary (docs/TRADEOFF.md).
+#include "app/distributed.h"
 #include "app/options.h"
 
 #include "trace/cutoff.h"
@@ -173,6 +174,8 @@ struct Run {
     std::optional<bool> bound_held; // float ray runs at full size: checked pixel by pixel
     ImageDifference diff{};
     std::optional<double> agreement; // against the reference's ids; not for enlarged runs
+    std::optional<std::uint64_t> refined; // adaptive antialiasing: pixels that took the grid
+    std::uint64_t pixels = 0;             // of the image rendered
 
     // Per frame: everything but the one-time GL set-up (context, shader compilation).
     double frame_seconds() const {
@@ -363,8 +366,7 @@ void write_csv(const std::vector<SceneResult>& results, const fs::path& path) {
                 << r.bound.max << ',' << (r.bound_held ? (*r.bound_held ? "yes" : "no") : "") << ','
                 << (std::find(front.begin(), front.end(), i) != front.end() ? "yes" : "") << ','
                 << s.samples << ',' << name_of(s.antialias) << ',' << s.aa_threshold << ','
-                << std::count(r.frame.result.refined.begin(), r.frame.result.refined.end(), 1)
-                << ',' << (s.against_grid ? "uniform 8x8" : "exact") << '\n';
+                << r.refined.value_or(0) << ',' << (s.against_grid ? "uniform 8x8" : "exact") << '\n';
         }
     }
     write_file_atomically(path, csv.str());
@@ -438,15 +440,12 @@ std::string markdown(const std::vector<SceneResult>& results, const TradeoffArgs
            << "|---|---:|---:|---:|---:|\n";
         for (const Run& r : sr.runs) {
             if (!r.setting.against_grid) continue;
-            const std::vector<std::uint8_t>& refined = r.frame.result.refined;
             md << "| " << r.label << " | " << format("%.4f", r.frame_seconds()) << " | "
                << psnr_text(r.diff.psnr_db) << " | "
                << format("%.2f%%", 100 * (1 - r.diff.fraction_over_two)) << " | "
-               << (refined.empty() ? std::string("–")
-                                   : format("%.1f%%", 100.0 *
-                                                          static_cast<double>(std::count(
-                                                              refined.begin(), refined.end(), 1)) /
-                                                          static_cast<double>(refined.size())))
+               << (r.refined ? format("%.1f%%", 100.0 * static_cast<double>(*r.refined) /
+                                                    static_cast<double>(r.pixels))
+                             : std::string("–"))
                << " |\n";
         }
         md << "\n<details><summary>Every run</summary>\n\n"
@@ -482,10 +481,12 @@ std::vector<fs::path> scene_paths(const TradeoffArgs& args) {
 std::vector<SceneResult> prepare(const TradeoffArgs& args) {
     const fs::path out = args.output;
     std::error_code ec;
-    if (fs::exists(out, ec) && !fs::is_directory(out, ec))
-        throw UsageError("-o " + out.string() + ": is not a directory");
-    check_output(fs::is_directory(out, ec) ? out / "tradeoff.csv" : out, "-o");
-    if (!args.summary.empty()) check_output(args.summary, "--summary"); // else inside -o
+    if (rank() == 0) { // only rank 0 writes
+        if (fs::exists(out, ec) && !fs::is_directory(out, ec))
+            throw UsageError("-o " + out.string() + ": is not a directory");
+        check_output(fs::is_directory(out, ec) ? out / "tradeoff.csv" : out, "-o");
+        if (!args.summary.empty()) check_output(args.summary, "--summary"); // else inside -o
+    }
     std::vector<SceneResult> results;
     for (const fs::path& path : scene_paths(args)) {
         SceneResult sr{path.stem().string(), path, load_scene_with_notes(path), {}, {}, 0, 0};
@@ -502,16 +503,58 @@ std::vector<SceneResult> prepare(const TradeoffArgs& args) {
     return results;
 }
 
+// A measured run's figures as numbers, for the rank that writes the CSV (MPI ranks spread a sweep):
+// everything the CSV, the plots and the summary read but the image and the setting, which that
+// rank knows already.
+constexpr std::size_t kRunFields = 27;
+
+void append_figures(const Run& r, std::vector<double>& out) {
+    const PhaseTimes& t = r.frame.times;
+    const RayCounts& rays = r.frame.result.rays;
+    const auto u = [](std::uint64_t v) { return static_cast<double>(v); };
+    const double figures[kRunFields] = {
+        t.prepare, t.context, t.compile, t.upload, t.raster, t.primary, t.shading,
+        u(rays.primary), u(rays.shadow), u(rays.reflection), u(rays.transmission),
+        r.diff.psnr_db, static_cast<double>(r.diff.max_abs_error), r.diff.fraction_over_one,
+        u(r.diff.pixels_over_one), r.diff.fraction_over_two,
+        r.agreement ? 1.0 : 0.0, r.agreement.value_or(0),
+        static_cast<double>(r.bound.max), u(r.bound.pixels_over_one), r.bound.largest_omitted_weight,
+        r.bound_held ? (*r.bound_held ? 1.0 : 0.0) : -1.0,
+        r.refined ? 1.0 : 0.0, u(r.refined.value_or(0)), u(r.pixels), 0, 0};
+    out.insert(out.end(), figures, figures + kRunFields);
+}
+
+Run run_from_figures(const double* f) {
+    Run r;
+    const auto u = [](double v) { return static_cast<std::uint64_t>(v); };
+    r.frame.times = {f[0], f[1], f[2], f[3], f[4], f[5], f[6]};
+    r.frame.result.rays = {u(f[7]), u(f[8]), u(f[9]), u(f[10])};
+    r.diff = {f[11], static_cast<int>(f[12]), f[13], u(f[14]), f[15]};
+    if (f[16] != 0) r.agreement = f[17];
+    r.bound.max = static_cast<int>(f[18]), r.bound.pixels_over_one = u(f[19]);
+    r.bound.largest_omitted_weight = f[20];
+    if (f[21] >= 0) r.bound_held = f[21] != 0;
+    if (f[22] != 0) r.refined = u(f[23]);
+    r.pixels = u(f[24]);
+    return r;
+}
+
 // The command's steps in their order: checks, then per scene the exact image and the sweep, then
 // CSV, plots and summary (about 60 lines, kept whole so that the order reads as it runs).
 int run_tradeoff(const TradeoffArgs& args) {
     const Stopwatch watch;
-    std::vector<SceneResult> results = prepare(args);
-    if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
-        throw std::runtime_error("glint tradeoff plots with gnuplot, which is not installed "
-                                 "(apt install gnuplot-nox; ./glint tradeoff installs it)");
+    std::vector<SceneResult> results;
+    // On ranks, every rank checks its input (rank 0 also where it writes) and they agree.
+    if (const int status = agree_on([&] {
+            results = prepare(args);
+            if (rank() == 0 && std::system("command -v gnuplot >/dev/null 2>&1") != 0)
+                throw std::runtime_error("glint tradeoff plots with gnuplot, which is not "
+                                         "installed (apt install gnuplot-nox; ./glint tradeoff "
+                                         "installs it)");
+        }))
+        return status;
     const fs::path out = args.output;
-    fs::create_directories(out);
+    if (rank() == 0) fs::create_directories(out);
     const fs::path summary = args.summary_path();
     const fs::path plots = fs::relative(fs::absolute(out), fs::absolute(summary).parent_path());
     std::string gl_renderer = "none";
@@ -542,19 +585,29 @@ int run_tradeoff(const TradeoffArgs& args) {
         const Run grid = render_once(scene, grid_setting, args, geometry);
         sr.grid_seconds = grid.total_seconds();
 
+        // The settings, each label once (a label several sweeps reach gathers their knobs); on
+        // MPI ranks, setting k is measured by rank k mod ranks and its figures sent to rank 0.
         const auto settings = sweep(scene, args.samples);
         std::map<std::string, std::size_t> seen;
-        std::printf("%s (%dx%d): %zu settings\n", sr.name.c_str(), scene.camera.width,
-                    scene.camera.height, settings.size());
         for (const auto& [knob, setting] : settings) {
             const std::string label = setting.label(scene);
             if (const auto it = seen.find(label); it != seen.end()) {
                 sr.runs[it->second].knobs += "+" + knob;
                 continue;
             }
+            seen[label] = sr.runs.size();
+            Run& run = sr.runs.emplace_back();
+            run.knobs = knob, run.label = label, run.setting = setting;
+        }
+        if (rank() == 0)
+            std::printf("%s (%dx%d): %zu settings%s\n", sr.name.c_str(), scene.camera.width,
+                        scene.camera.height, sr.runs.size(),
+                        on_ranks() ? (" over " + std::to_string(ranks()) + " ranks").c_str() : "");
+        std::vector<double> figures;
+        for (std::size_t k = static_cast<std::size_t>(rank()); k < sr.runs.size();
+             k += static_cast<std::size_t>(ranks())) {
+            const Setting& setting = sr.runs[k].setting;
             Run run = measure(scene, setting, args, geometry);
-            run.knobs = knob;
-            run.label = label;
             const RenderResult& result = run.frame.result;
             run.diff = compare_images(setting.against_grid ? grid.frame.result.image
                                                            : reference.result.image,
@@ -564,13 +617,37 @@ int run_tradeoff(const TradeoffArgs& args) {
             if (setting.frame.precision == Precision::f32 && setting.frame.mode == Mode::ray &&
                 setting.divisor == 1)
                 run.bound_held = cutoff_violations(run.bound, result.image, untruncated_float) == 0;
-            std::printf("  %-44s %8.4f s  PSNR %6s dB  max error %3d/255\n", label.c_str(),
-                        run.frame_seconds(), psnr_text(run.diff.psnr_db).c_str(),
-                        run.diff.max_abs_error);
-            std::fflush(stdout);
+            if (!result.refined.empty())
+                run.refined = static_cast<std::uint64_t>(
+                    std::count(result.refined.begin(), result.refined.end(), 1));
+            run.pixels = result.refined.size();
             if (!run.frame.gl_renderer.empty()) gl_renderer = run.frame.gl_renderer;
-            seen[label] = sr.runs.size();
-            sr.runs.push_back(std::move(run));
+            append_figures(run, figures);
+            run.knobs = sr.runs[k].knobs, run.label = sr.runs[k].label;
+            if (!on_ranks())
+                std::printf("  %-44s %8.4f s  PSNR %6s dB  max error %3d/255\n",
+                            run.label.c_str(), run.frame_seconds(),
+                            psnr_text(run.diff.psnr_db).c_str(), run.diff.max_abs_error);
+            std::fflush(stdout);
+            sr.runs[k] = std::move(run);
+        }
+        if (on_ranks()) {
+            const std::vector<std::vector<double>> all = gather_numbers(figures);
+            if (rank() != 0) continue;
+            for (int r = 1; r < ranks(); ++r) {
+                const double* f = all[static_cast<std::size_t>(r)].data();
+                for (std::size_t k = static_cast<std::size_t>(r); k < sr.runs.size();
+                     k += static_cast<std::size_t>(ranks()), f += kRunFields) {
+                    Run run = run_from_figures(f);
+                    run.knobs = sr.runs[k].knobs, run.label = sr.runs[k].label;
+                    run.setting = sr.runs[k].setting;
+                    sr.runs[k] = std::move(run);
+                }
+            }
+            for (const Run& run : sr.runs)
+                std::printf("  %-44s %8.4f s  PSNR %6s dB  max error %3d/255\n",
+                            run.label.c_str(), run.frame_seconds(),
+                            psnr_text(run.diff.psnr_db).c_str(), run.diff.max_abs_error);
         }
         // Two plots: the knobs against the exact image, and antialiasing against 8×8.
         std::vector<Run> exact_runs, grid_runs;
@@ -578,6 +655,7 @@ int run_tradeoff(const TradeoffArgs& args) {
         plot(sr.name, exact_runs, out, "the exact image");
         plot(sr.name + "-antialiasing", grid_runs, out, "the uniform 8x8 image");
     }
+    if (rank() != 0) return 0;
     write_csv(results, out / "tradeoff.csv");
     write_file_atomically(summary, markdown(results, args, plots, gl_renderer, watch.seconds()));
     std::printf("wrote %s, %s and a plot per scene (SVG, PNG) in %s, in %.0f s\n",
@@ -611,7 +689,7 @@ Command add_tradeoff_command(CLI::App& app) {
         ->capture_default_str()
         ->check(CLI::Range(1, kMaxSamples));
     return {cmd, [args] { prepare(*args); },
-            [args] { return guarded([&] { return run_tradeoff(*args); }); }};
+            [args] { return guarded_on_ranks([&] { return run_tradeoff(*args); }); }};
 }
 
 } // namespace glint

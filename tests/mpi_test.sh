@@ -4,6 +4,8 @@
 #                                           single process's: shipped and SPD scenes, both modes,
 #                                           one sample, adaptive 3x3, uniform 2x2
 #   mpi_test.sh GLINT MPIRUN bad-input      bad input on the ranks: exit 2, one message, no file
+#   mpi_test.sh GLINT MPIRUN tradeoff       a sweep spread over 2 ranks gives the single process's
+#                                           CSV, timings (and the Pareto marks they decide) aside
 #   mpi_test.sh GLINT MPIRUN killed-rank    a rank killed mid-render ends the run with an error,
 #                                           not a hang, and leaves no output
 set -euo pipefail
@@ -53,9 +55,28 @@ bad-input)
   "$mpirun" -np 2 "$glint" compare "$root/scenes/default.json" >out.txt 2>err.txt
   code=$?
   set -e
-  [ "$code" -eq 2 ] && grep -q "only \`glint render\` runs across MPI ranks" err.txt ||
+  [ "$code" -eq 2 ] && grep -q "only \`glint render\` and \`glint tradeoff\` run across MPI ranks" err.txt ||
     fail "compare on ranks: exit $code: $(cat err.txt)"
   echo "bad input on ranks: exit 2, one message, nothing written"
+  ;;
+tradeoff)
+  cd "$work"
+  args=("$root/scenes/default.json" --size 64x48 --repeat 1 --samples 2 --threads 1)
+  "$glint" tradeoff "${args[@]}" -o one >/dev/null
+  "$mpirun" -np 2 --bind-to none "$glint" tradeoff "${args[@]}" -o many >out.txt
+  grep -q "over 2 ranks" out.txt || fail "the sweep did not say it was spread"
+  python3 - one/tradeoff.csv many/tradeoff.csv <<'PY' || fail "the CSVs differ"
+import csv, sys
+def rows(path):
+    return [{k: v for k, v in r.items() if not k.startswith("seconds") and k != "pareto"}
+            for r in csv.DictReader(open(path))]
+one, many = rows(sys.argv[1]), rows(sys.argv[2])
+sys.exit(0 if one == many and len(one) > 20 else 1)
+PY
+  for file in default.svg default.png default-antialiasing.svg summary.md; do
+    [ -s "many/$file" ] || fail "no $file"
+  done
+  echo "tradeoff over 2 ranks: the single process's CSV, $(($(wc -l <one/tradeoff.csv) - 1)) settings"
   ;;
 killed-rank)
   cd "$work"
