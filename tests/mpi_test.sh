@@ -2,7 +2,9 @@
 # glint across MPI ranks (docs/DISTRIBUTED.md), run by ctest where MPI was found:
 #   mpi_test.sh GLINT MPIRUN identical NP   the image of `mpirun -np NP` is byte for byte the
 #                                           single process's: shipped and SPD scenes, both modes,
-#                                           one sample, adaptive 3x3, uniform 2x2
+#                                           each scene with one of: one sample, adaptive 3x3,
+#                                           uniform 2x2 (in turn, shifted by NP, so that NP 2 and
+#                                           3 together give each scene two of them)
 #   mpi_test.sh GLINT MPIRUN bad-input      bad input on the ranks: exit 2, one message, no file
 #   mpi_test.sh GLINT MPIRUN tradeoff       a sweep spread over 2 ranks gives the single process's
 #                                           CSV, timings (and the Pareto marks they decide) aside
@@ -22,11 +24,13 @@ case "$what" in
 identical)
   np=$4
   scenes=("$root"/scenes/*.json "$root"/tests/data/spd/{balls-1,gears-1,rings-1,tree-3,mount-3}.nff)
+  variants=("--samples 1" "--samples 3 --aa adaptive" "--samples 2 --aa uniform")
   runs=0
-  for scene in "${scenes[@]}"; do
+  for i in "${!scenes[@]}"; do
+    scene=${scenes[$i]}
     for mode in hybrid ray; do
-      for samples in "--samples 1" "--samples 3 --aa adaptive" "--samples 2 --aa uniform"; do
-        args=("$scene" --size 96x72 --mode "$mode" $samples --threads 1)
+      for samples in "${variants[$(((i + np) % 3))]}"; do
+        args=("$scene" --size 160x64 --mode "$mode" $samples --threads 1) # 10 tiles
         "$glint" render "${args[@]}" -o "$work/one.png" >/dev/null
         "$mpirun" -np "$np" --bind-to none "$glint" render "${args[@]}" -o "$work/many.png" >"$work/out.txt"
         cmp -s "$work/one.png" "$work/many.png" || fail "np $np: ${args[*]}: the images differ"
