@@ -5,8 +5,8 @@ namespace glint {
 Cli::Cli() {
     app.require_subcommand(1);
     app.set_version_flag("--version", std::string(GLINT_VERSION));
-    commands = {add_render_command(app),   add_explain_command(app), add_preview_command(app),
-                add_compare_command(app),  add_tradeoff_command(app), add_bench_command(app),
+    commands = {add_render_command(app),  add_explain_command(app),  add_preview_command(app),
+                add_compare_command(app), add_tradeoff_command(app), add_bench_command(app),
                 add_info_command(app)};
 }
 

@@ -54,17 +54,17 @@ ExplainJob prepare(ExplainArgs& args) {
     job.scene = args.scene.load();
     const Camera& camera = job.scene.camera;
     if (job.x < 0 || job.x >= camera.width || job.y < 0 || job.y >= camera.height)
-        throw UsageError("pixel (" + args.pixel[0] + ", " + args.pixel[1] +
-                         ") is outside the " + std::to_string(camera.width) + "x" +
-                         std::to_string(camera.height) + " image (X 0 to " +
-                         std::to_string(camera.width - 1) + ", Y 0 to " +
+        throw UsageError("pixel (" + args.pixel[0] + ", " + args.pixel[1] + ") is outside the " +
+                         std::to_string(camera.width) + "x" + std::to_string(camera.height) +
+                         " image (X 0 to " + std::to_string(camera.width - 1) + ", Y 0 to " +
                          std::to_string(camera.height - 1) + ")");
     const int n = job.scene.render.samples;
     job.a = job.b = n / 2; // the centre sample (the pixel centre's ray for odd N)
     if (!args.sample.empty()) {
         const std::size_t comma = args.sample.find(',');
         if (comma == std::string::npos)
-            throw UsageError("--sample " + args.sample + ": expected A,B (column, row in the grid)");
+            throw UsageError("--sample " + args.sample +
+                             ": expected A,B (column, row in the grid)");
         job.a = whole_number(args.sample.substr(0, comma), "--sample A");
         job.b = whole_number(args.sample.substr(comma + 1), "--sample B");
         if (job.a < 0 || job.a >= n || job.b < 0 || job.b >= n)

@@ -173,7 +173,7 @@ struct Run {
     CutoffBound bound;
     std::optional<bool> bound_held; // float ray runs at full size: checked pixel by pixel
     ImageDifference diff{};
-    std::optional<double> agreement; // against the reference's ids; not for enlarged runs
+    std::optional<double> agreement;      // against the reference's ids; not for enlarged runs
     std::optional<std::uint64_t> refined; // adaptive antialiasing: pixels that took the grid
     std::uint64_t pixels = 0;             // of the image rendered
 
@@ -366,7 +366,8 @@ void write_csv(const std::vector<SceneResult>& results, const fs::path& path) {
                 << r.bound.max << ',' << (r.bound_held ? (*r.bound_held ? "yes" : "no") : "") << ','
                 << (std::find(front.begin(), front.end(), i) != front.end() ? "yes" : "") << ','
                 << s.samples << ',' << name_of(s.antialias) << ',' << s.aa_threshold << ','
-                << r.refined.value_or(0) << ',' << (s.against_grid ? "uniform 8x8" : "exact") << '\n';
+                << r.refined.value_or(0) << ',' << (s.against_grid ? "uniform 8x8" : "exact")
+                << '\n';
         }
     }
     write_file_atomically(path, csv.str());
@@ -512,15 +513,33 @@ void append_figures(const Run& r, std::vector<double>& out) {
     const PhaseTimes& t = r.frame.times;
     const RayCounts& rays = r.frame.result.rays;
     const auto u = [](std::uint64_t v) { return static_cast<double>(v); };
-    const double figures[kRunFields] = {
-        t.prepare, t.context, t.compile, t.upload, t.raster, t.primary, t.shading,
-        u(rays.primary), u(rays.shadow), u(rays.reflection), u(rays.transmission),
-        r.diff.psnr_db, static_cast<double>(r.diff.max_abs_error), r.diff.fraction_over_one,
-        u(r.diff.pixels_over_one), r.diff.fraction_over_two,
-        r.agreement ? 1.0 : 0.0, r.agreement.value_or(0),
-        static_cast<double>(r.bound.max), u(r.bound.pixels_over_one), r.bound.largest_omitted_weight,
-        r.bound_held ? (*r.bound_held ? 1.0 : 0.0) : -1.0,
-        r.refined ? 1.0 : 0.0, u(r.refined.value_or(0)), u(r.pixels), 0, 0};
+    const double figures[kRunFields] = {t.prepare,
+                                        t.context,
+                                        t.compile,
+                                        t.upload,
+                                        t.raster,
+                                        t.primary,
+                                        t.shading,
+                                        u(rays.primary),
+                                        u(rays.shadow),
+                                        u(rays.reflection),
+                                        u(rays.transmission),
+                                        r.diff.psnr_db,
+                                        static_cast<double>(r.diff.max_abs_error),
+                                        r.diff.fraction_over_one,
+                                        u(r.diff.pixels_over_one),
+                                        r.diff.fraction_over_two,
+                                        r.agreement ? 1.0 : 0.0,
+                                        r.agreement.value_or(0),
+                                        static_cast<double>(r.bound.max),
+                                        u(r.bound.pixels_over_one),
+                                        r.bound.largest_omitted_weight,
+                                        r.bound_held ? (*r.bound_held ? 1.0 : 0.0) : -1.0,
+                                        r.refined ? 1.0 : 0.0,
+                                        u(r.refined.value_or(0)),
+                                        u(r.pixels),
+                                        0,
+                                        0};
     out.insert(out.end(), figures, figures + kRunFields);
 }
 
@@ -625,9 +644,9 @@ int run_tradeoff(const TradeoffArgs& args) {
             append_figures(run, figures);
             run.knobs = sr.runs[k].knobs, run.label = sr.runs[k].label;
             if (!on_ranks())
-                std::printf("  %-44s %8.4f s  PSNR %6s dB  max error %3d/255\n",
-                            run.label.c_str(), run.frame_seconds(),
-                            psnr_text(run.diff.psnr_db).c_str(), run.diff.max_abs_error);
+                std::printf("  %-44s %8.4f s  PSNR %6s dB  max error %3d/255\n", run.label.c_str(),
+                            run.frame_seconds(), psnr_text(run.diff.psnr_db).c_str(),
+                            run.diff.max_abs_error);
             std::fflush(stdout);
             sr.runs[k] = std::move(run);
         }
@@ -645,9 +664,9 @@ int run_tradeoff(const TradeoffArgs& args) {
                 }
             }
             for (const Run& run : sr.runs)
-                std::printf("  %-44s %8.4f s  PSNR %6s dB  max error %3d/255\n",
-                            run.label.c_str(), run.frame_seconds(),
-                            psnr_text(run.diff.psnr_db).c_str(), run.diff.max_abs_error);
+                std::printf("  %-44s %8.4f s  PSNR %6s dB  max error %3d/255\n", run.label.c_str(),
+                            run.frame_seconds(), psnr_text(run.diff.psnr_db).c_str(),
+                            run.diff.max_abs_error);
         }
         // Two plots: the knobs against the exact image, and antialiasing against 8×8.
         std::vector<Run> exact_runs, grid_runs;

@@ -128,13 +128,12 @@ void write_ray(std::string& out, const Facts& facts, const PixelExplanation& e, 
     const Ray& local = e.object_rays[i];
     line("  hits " + facts.object(o) + " (" + facts.shape(o) + ", M " + facts.transform(o) +
          ") at t = " + num(r.hit.t));
-    line("  object space: M⁻¹o = " + vec(DVec3(local.origin)) + " (w = 1), M⁻¹d = " +
-         vec(DVec3(local.direction)) + " (w = 0)");
-    line("  hit point: p' = M⁻¹o + t·M⁻¹d = " + vec(DVec3(r.surface.object_point)) + ", p = " +
-         vec(facts.to_scene(r.surface.position)));
-    line("  normal: n' = " + vec(DVec3(r.surface.object_normal)) +
-         ", n = normalize(M⁻ᵀn') = " + vec(DVec3(r.surface.normal)) +
-         (r.surface.entering ? "" : " (flipped: seen from inside)"));
+    line("  object space: M⁻¹o = " + vec(DVec3(local.origin)) +
+         " (w = 1), M⁻¹d = " + vec(DVec3(local.direction)) + " (w = 0)");
+    line("  hit point: p' = M⁻¹o + t·M⁻¹d = " + vec(DVec3(r.surface.object_point)) +
+         ", p = " + vec(facts.to_scene(r.surface.position)));
+    line("  normal: n' = " + vec(DVec3(r.surface.object_normal)) + ", n = normalize(M⁻ᵀn') = " +
+         vec(DVec3(r.surface.normal)) + (r.surface.entering ? "" : " (flipped: seen from inside)"));
     if (r.surface.shading != r.surface.normal)
         line("  shading normal (smooth mesh): " + vec(DVec3(r.surface.shading)));
     if (r.odd_cell) line("  checker: an odd cell, its colours in place of the material's");
@@ -214,10 +213,10 @@ std::string explanation_text(const Scene& scene, const World& world, const Pixel
         out += item->first_pass ? "item buffer (the pixel centre, in the first pass; the grid is "
                                   "traced by ray): "
                                 : "item buffer: ";
-        out += item->id == 0 ? "nothing drawn"
-                             : "id " + std::to_string(item->id) + " = " +
-                                   facts.object(item->id - 1) + ", view depth " +
-                                   num(item->view_depth);
+        out += item->id == 0
+                   ? "nothing drawn"
+                   : "id " + std::to_string(item->id) + " = " + facts.object(item->id - 1) +
+                         ", view depth " + num(item->view_depth);
         out += "; resolve: " + std::string(item->outcome()) +
                (item->resolve.edges ? " (on an id edge: every object in front tested)" : "") +
                ", " + std::to_string(item->resolve.tests) + " other objects intersected\n";
@@ -227,8 +226,8 @@ std::string explanation_text(const Scene& scene, const World& world, const Pixel
     out += "\nsample: R_0 = " + colour(e.rays.front().colour) + " → bytes " +
            bytes(e.sample_bytes) + "\n";
     out += "pixel: ";
-    out += e.averaged ? "the mean of its " + std::to_string(e.n * e.n) + " samples, each clamped, " +
-                            colour(e.pixel_colour)
+    out += e.averaged ? "the mean of its " + std::to_string(e.n * e.n) +
+                            " samples, each clamped, " + colour(e.pixel_colour)
                       : std::string("this sample");
     out += " → bytes " + bytes(e.pixel_bytes) + "\n";
     out += "rays: this tree " + counts(e.tree_rays);

@@ -24,8 +24,8 @@ void draw_item_buffers(const World& world, const FrameSettings& settings, Frame&
         frame.items = timed(frame.times.raster, [&] { return items.draw(world); });
     // Adaptive without rule 3 traces its refined pixels' samples by ray: they are a few
     // percent of the N×N grid, which would cost N² item buffers to draw.
-    const bool sample_grid = render.samples > 1 &&
-                             (render.antialias == Antialias::uniform || settings.aa_sample_ids);
+    const bool sample_grid =
+        render.samples > 1 && (render.antialias == Antialias::uniform || settings.aa_sample_ids);
     if (sample_grid)
         frame.sample_items =
             timed(frame.times.raster, [&] { return items.draw(world, false, render.samples); });
@@ -64,8 +64,9 @@ Frame render_frame(const Scene& scene, std::optional<AccelKind> accel,
         if (settings.mode != Mode::ray)
             throw std::invalid_argument("double precision renders in ray mode only");
         Frame frame;
-        frame.result = render_ray_frame(Precision::f64, scene, accel,
-                                        {settings.threads, tiles_done, settings.exchange}, frame.times);
+        frame.result =
+            render_ray_frame(Precision::f64, scene, accel,
+                             {settings.threads, tiles_done, settings.exchange}, frame.times);
         return frame;
     }
     double prepare = 0;

@@ -1,8 +1,8 @@
 #include "preview/panel.h"
 
-#include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
 
 #include <filesystem>
 
@@ -12,8 +12,8 @@ namespace {
 
 // The characters the explanation uses beyond ASCII: Latin-1 (·), superscripts (⁻¹), modifier
 // letters (ᵀ), arrows (→), mathematical operators (Σ, ≤).
-const ImWchar kGlyphs[] = {0x0020, 0x00FF, 0x0370, 0x03FF, 0x1D00, 0x1DBF,
-                           0x2070, 0x209F, 0x2190, 0x21FF, 0x2200, 0x22FF, 0};
+const ImWchar kGlyphs[] = {0x0020, 0x00FF, 0x0370, 0x03FF, 0x1D00, 0x1DBF, 0x2070,
+                           0x209F, 0x2190, 0x21FF, 0x2200, 0x22FF, 0};
 constexpr const char* kFont = "/usr/share/fonts/truetype/dejavu/DejaVuSansMono.ttf";
 
 } // namespace
@@ -23,7 +23,8 @@ Panel::Panel(GLFWwindow* window) {
     ImGui::CreateContext();
     ImGuiIO& io = ImGui::GetIO();
     io.IniFilename = nullptr; // no imgui.ini in the user's directory
-    if (std::filesystem::exists(kFont)) io.Fonts->AddFontFromFileTTF(kFont, 13.0f, nullptr, kGlyphs);
+    if (std::filesystem::exists(kFont))
+        io.Fonts->AddFontFromFileTTF(kFont, 13.0f, nullptr, kGlyphs);
     ImGui::StyleColorsDark();
     ImGui::GetStyle().Alpha = 0.92f;
     ImGui_ImplGlfw_InitForOpenGL(window, true);

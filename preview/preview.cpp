@@ -23,8 +23,8 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cmath>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <optional>
@@ -52,8 +52,9 @@ const std::string_view kPreviewKeys = R"(glint preview keys
   Esc, Q            quit
 )";
 
-const std::vector<std::string> kPreviewSettings = {
-    "mode", "raster", "resolve", "depth", "cutoff", "tess", "samples", "aa", "accel", "view", "panel"};
+const std::vector<std::string> kPreviewSettings = {"mode",   "raster", "resolve", "depth",
+                                                   "cutoff", "tess",   "samples", "aa",
+                                                   "accel",  "view",   "panel"};
 
 namespace {
 
@@ -108,7 +109,8 @@ int parse_whole(const std::string& name, const std::string& value, int lo, int h
 // Sets one of the panel's settings by name: the panel's controls and --set both come here.
 Effect set_panel_setting(const PanelState& s, const std::string& name, const std::string& value) {
     if (name == "mode") return s.frame.mode = parse_name<Mode>(name, value), Effect::retrace;
-    if (name == "raster") return s.frame.raster = parse_name<RasterMode>(name, value), Effect::upload;
+    if (name == "raster")
+        return s.frame.raster = parse_name<RasterMode>(name, value), Effect::upload;
     if (name == "resolve")
         return s.frame.resolve = parse_name<Resolve>(name, value), Effect::retrace;
     if (name == "depth")
@@ -121,7 +123,8 @@ Effect set_panel_setting(const PanelState& s, const std::string& name, const std
                Effect::upload;
     if (name == "samples")
         return s.render.samples = parse_whole(name, value, 1, kMaxSamples), Effect::retrace;
-    if (name == "aa") return s.render.antialias = parse_name<Antialias>(name, value), Effect::retrace;
+    if (name == "aa")
+        return s.render.antialias = parse_name<Antialias>(name, value), Effect::retrace;
     if (name == "accel") {
         s.accel = value == "auto" ? std::nullopt
                                   : std::optional<AccelKind>(parse_name<AccelKind>(name, value));
@@ -133,15 +136,15 @@ Effect set_panel_setting(const PanelState& s, const std::string& name, const std
             throw std::invalid_argument(name + "=" + value + ": expected on or off");
         return s.panel = value == "on", Effect::panel;
     }
-    throw std::invalid_argument("no setting named '" + name + "' (the panel's: " +
-                                one_of(kPreviewSettings) + ")");
+    throw std::invalid_argument("no setting named '" + name +
+                                "' (the panel's: " + one_of(kPreviewSettings) + ")");
 }
 
 std::pair<std::string, std::string> split_assignment(const std::string& assignment) {
     const std::size_t eq = assignment.find('=');
     if (eq == std::string::npos)
-        throw std::invalid_argument(assignment + ": expected name=value (names: " +
-                                    one_of(kPreviewSettings) + ")");
+        throw std::invalid_argument(
+            assignment + ": expected name=value (names: " + one_of(kPreviewSettings) + ")");
     return {assignment.substr(0, eq), assignment.substr(eq + 1)};
 }
 
@@ -246,7 +249,7 @@ class Preview {
     int button_ = -1; // the mouse button held, if any
     double cursor_x_ = 0, cursor_y_ = 0;
     double press_x_ = 0, press_y_ = 0; // where the left button went down
-    bool dragged_ = false;              // since then, moved far enough to orbit (not a click)
+    bool dragged_ = false;             // since then, moved far enough to orbit (not a click)
     std::optional<AccelKind> accel_;
     bool panel_visible_ = true;
     // The explained pixel, its text and its tree's segments; explained again after a setting
@@ -315,11 +318,12 @@ std::string Preview::describe_settings() const {
         text += ", " + std::to_string(render.samples) + "x" + std::to_string(render.samples) + " " +
                 std::string(name_of(render.antialias));
     char cutoff[48];
-    std::snprintf(cutoff, sizeof cutoff, ", cut-off %g", static_cast<double>(render.min_reflectivity));
+    std::snprintf(cutoff, sizeof cutoff, ", cut-off %g",
+                  static_cast<double>(render.min_reflectivity));
     text += cutoff;
-    text += ", " + (world_ ? std::string(name_of(world_->accelerator().kind()))
-                           : accel_ ? std::string(name_of(*accel_))
-                                    : std::string("auto"));
+    text += ", " + (world_   ? std::string(name_of(world_->accelerator().kind()))
+                    : accel_ ? std::string(name_of(*accel_))
+                             : std::string("auto"));
     return text + ", view " + std::string(name_of(view_));
 }
 
@@ -430,7 +434,8 @@ void Preview::draw_panel() {
                     log_.worlds.empty() ? log_.first_world : log_.worlds.back(), item_buffer_ms_);
         ImGui::Text("last frame (UI) %.1f ms",
                     log_.frames.empty() ? log_.first_frame : log_.frames.back());
-        ImGui::Text("rays: %llu primary, %llu shadow", static_cast<unsigned long long>(rays.primary),
+        ImGui::Text("rays: %llu primary, %llu shadow",
+                    static_cast<unsigned long long>(rays.primary),
                     static_cast<unsigned long long>(rays.shadow));
         ImGui::Text("      %llu reflection, %llu transmission",
                     static_cast<unsigned long long>(rays.reflection),
@@ -713,7 +718,8 @@ std::optional<std::pair<int, int>> Preview::pixel_at(double x, double y) const {
 }
 
 void Preview::set(const std::string& name, const std::string& value) {
-    switch (set_panel_setting({frame_, scene_.render, accel_, view_, panel_visible_}, name, value)) {
+    switch (
+        set_panel_setting({frame_, scene_.render, accel_, view_, panel_visible_}, name, value)) {
     case Effect::new_world:
         world_.reset(); // a structure of another kind: built afresh, not refitted
         dirty_ = true;
@@ -740,12 +746,12 @@ void Preview::set(const std::string& name, const std::string& value) {
 void Preview::explain(int x, int y) {
     const PrimarySource source{frame_.mode == Mode::hybrid ? ids_.get() : nullptr, frame_.resolve};
     const int n = world_->settings().samples;
-    const PixelExplanation e = explain_pixel(*world_, source, x, y, n / 2, n / 2,
-                                             job_->refined(x, y));
+    const PixelExplanation e =
+        explain_pixel(*world_, source, x, y, n / 2, n / 2, job_->refined(x, y));
     Scene scene = scene_;
     scene.camera = camera_.camera();
-    const std::string what = std::filesystem::path(options_.scene_name).filename().string() +
-                             " (" + std::to_string(scene.camera.width) + "x" +
+    const std::string what = std::filesystem::path(options_.scene_name).filename().string() + " (" +
+                             std::to_string(scene.camera.width) + "x" +
                              std::to_string(scene.camera.height) + "), preview, " +
                              describe_settings();
     explanation_ = explanation_text(scene, *world_, e, what);

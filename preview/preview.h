@@ -32,7 +32,8 @@ struct PreviewOptions {
     // Scripted: the panel's settings, "name=value" (preview_setting_names), set through the panel's
     // own path on the second frame, in order.
     std::vector<std::string> settings;
-    // Scripted: the pixel clicked once the trace has finished (it is explained, and its tree drawn).
+    // Scripted: the pixel clicked once the trace has finished (it is explained, and its tree
+    // drawn).
     std::optional<std::pair<int, int>> click;
     bool panel = true; // the panel (and a clicked pixel's tree) shown; G toggles it
 

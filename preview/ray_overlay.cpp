@@ -51,14 +51,14 @@ std::vector<OverlaySegment> tree_segments(const World& world, const PixelExplana
     for (std::size_t i = 0; i < e.rays.size(); ++i) {
         const RecordedRay& r = e.rays[i];
         const Vec3 d = glm::normalize(r.ray.direction);
-        const Vec3 end = r.hit.found() ? r.ray.origin + r.hit.t * r.ray.direction
-                                       : r.ray.origin + far * d;
+        const Vec3 end =
+            r.hit.found() ? r.ray.origin + r.hit.t * r.ray.direction : r.ray.origin + far * d;
         if (r.kind == RayKind::primary) {
             const auto [x, y] = projection.pixel(r.ray.origin + d); // on the ray, 1 in front
             segments.push_back({Kind::primary, x, y, x, y});
         } else {
-            add(r.kind == RayKind::reflection ? Kind::reflection : Kind::transmission,
-                r.ray.origin, end);
+            add(r.kind == RayKind::reflection ? Kind::reflection : Kind::transmission, r.ray.origin,
+                end);
         }
         for (const LightTerm& term : r.lights)
             if (term.in_front())

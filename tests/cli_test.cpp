@@ -282,8 +282,9 @@ TEST(Cli, ExplainPrintsThePixelsTreeAndWritesJsonThatReadsBack) {
     const Outcome r = glint(dir, "explain " GLINT_SOURCE_DIR
                                  "/scenes/default.json 41 33 --size 80x60 --json e.json");
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    for (const char* expected : {"ray 0: primary", "item buffer (the pixel centre", "M⁻¹o = ", "normalize(M⁻ᵀn')",
-                                 "R_0 = ambient + diffuse + specular", "→ bytes ", "rays: this tree"})
+    for (const char* expected :
+         {"ray 0: primary", "item buffer (the pixel centre", "M⁻¹o = ", "normalize(M⁻ᵀn')",
+          "R_0 = ambient + diffuse + specular", "→ bytes ", "rays: this tree"})
         EXPECT_NE(r.out.find(expected), std::string::npos) << expected << " in\n" << r.out;
     const nlohmann::json e = nlohmann::json::parse(slurp(dir / "e.json"));
     EXPECT_EQ(e["schema"], "glint-explain/1");
@@ -315,7 +316,8 @@ TEST(Cli, ExplainRefusesAPixelOrSampleOutsideTheImageAndItsGrid) {
              {"10 10 --sample 1", "--sample 1: expected A,B"},
              {"10 ten", "Y 'ten' is not a whole number"},
              {"10", "explain needs the pixel: glint explain [SCENE] X Y"},
-             {"10 10 --json no/dir/e.json", "--json no/dir/e.json: directory no/dir does not exist"}}) {
+             {"10 10 --json no/dir/e.json",
+              "--json no/dir/e.json: directory no/dir does not exist"}}) {
         const bool json = args.find("--json") != std::string::npos;
         const Outcome r = glint(dir, "explain " + scene + args + (json ? "" : " --json e.json"));
         EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;

@@ -20,7 +20,7 @@ namespace glint::testing {
 // differ from the right or lower neighbour: shadow edges, mirror pixels' edges), up to `count`
 // more, spread evenly over the image.
 inline std::vector<std::pair<int, int>> pixels_to_explain(const World& world,
-                                                           const RenderResult& frame, int count) {
+                                                          const RenderResult& frame, int count) {
     const int width = world.camera().width(), height = world.camera().height();
     std::vector<std::pair<int, int>> pixels;
     std::mt19937 random(2026);
@@ -38,7 +38,8 @@ inline std::vector<std::pair<int, int>> pixels_to_explain(const World& world,
                 keys[i] != keys[i + width])
                 edges.emplace_back(x, y);
         }
-    const std::size_t step = std::max<std::size_t>(1, edges.size() / static_cast<std::size_t>(count));
+    const std::size_t step =
+        std::max<std::size_t>(1, edges.size() / static_cast<std::size_t>(count));
     for (std::size_t k = 0; k < edges.size(); k += step) pixels.push_back(edges[k]);
     return pixels;
 }
@@ -55,9 +56,11 @@ inline int expect_explanations_match(const Scene& scene, const World& world,
         const std::size_t i = static_cast<std::size_t>(y) * width + x;
         const bool refined = !frame.refined.empty() && frame.refined[i];
         const PixelExplanation e = explain_pixel(world, source, x, y, n / 2, n / 2, refined);
-        const std::string at = what + " pixel (" + std::to_string(x) + ", " + std::to_string(y) + ")";
+        const std::string at =
+            what + " pixel (" + std::to_string(x) + ", " + std::to_string(y) + ")";
         const std::uint8_t* rendered = frame.image.pixel(x, y);
-        EXPECT_EQ(e.pixel_bytes, (std::array<std::uint8_t, 3>{rendered[0], rendered[1], rendered[2]}))
+        EXPECT_EQ(e.pixel_bytes,
+                  (std::array<std::uint8_t, 3>{rendered[0], rendered[1], rendered[2]}))
             << at;
         // The tree's rays are the ones the path counted (one sample: the pixel's own count).
         if (!e.averaged) {

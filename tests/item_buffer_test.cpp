@@ -420,22 +420,22 @@ INSTANTIATE_TEST_SUITE_P(ShippedScenes, HybridTest, ::testing::ValuesIn(every_sc
 TEST(HybridExplain, ReportsTheRenderedBytesAtHundredsOfPixelsOfEveryShippedScene) {
     for (const char* name : testing::kShippedScenes) {
         for (const auto& [raster, resolve] : {std::pair{RasterMode::automatic, Resolve::exact},
-                                             std::pair{RasterMode::mesh, Resolve::trust}}) {
+                                              std::pair{RasterMode::mesh, Resolve::trust}}) {
             const Scene scene = testing::shipped(name, 160, 120);
             const World world(scene);
             FrameSettings settings;
             settings.raster = raster, settings.resolve = resolve;
             const Frame frame = render_frame(world, settings);
             const std::string what = std::string(name) + " " + std::string(name_of(resolve));
-            testing::expect_explanations_match(scene, world, primary_source(frame, resolve),
-                                               frame.result,
-                                               testing::pixels_to_explain(world, frame.result, 150),
-                                               what);
+            testing::expect_explanations_match(
+                scene, world, primary_source(frame, resolve), frame.result,
+                testing::pixels_to_explain(world, frame.result, 150), what);
             // Where the item buffer named an object, explain says so.
             if (frame.items) {
                 const PixelExplanation e = explain_pixel(
                     world, primary_source(frame, resolve), 80, 60, scene.render.samples / 2,
-                    scene.render.samples / 2, !frame.result.refined.empty() && frame.result.refined[60 * 160 + 80]);
+                    scene.render.samples / 2,
+                    !frame.result.refined.empty() && frame.result.refined[60 * 160 + 80]);
                 if (!e.averaged) {
                     ASSERT_TRUE(e.item_buffer.has_value()) << what;
                     EXPECT_EQ(e.item_buffer->id, frame.items->ids.ids[60 * 160 + 80]) << what;

@@ -189,8 +189,7 @@ TEST(Preview, AClickDrawsThePixelsTreeAlongItsRaysAndPrintsWhatExplainPrints) {
     int along = 0, stray = 0;
     for (int py = 0; py < height; ++py) {
         for (int px = 0; px < width; ++px) {
-            if (!std::equal(before.pixel(px, py), before.pixel(px, py) + 3, after.pixel(px, py)))
-            {
+            if (!std::equal(before.pixel(px, py), before.pixel(px, py) + 3, after.pixel(px, py))) {
                 if (px >= panel.x - 2 && px <= panel.x + panel.width + 2 &&
                     py <= panel.y + panel.height + 2)
                     continue;

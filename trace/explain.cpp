@@ -39,8 +39,8 @@ std::array<std::uint8_t, 3> bytes_of(Vec3 colour) {
 
 } // namespace
 
-PixelExplanation explain_pixel(const World& world, const PrimarySource& source, int x, int y,
-                               int a, int b, bool refined) {
+PixelExplanation explain_pixel(const World& world, const PrimarySource& source, int x, int y, int a,
+                               int b, bool refined) {
     const RenderSettings& settings = world.settings();
     PixelExplanation out;
     out.x = x, out.y = y, out.n = settings.samples, out.a = a, out.b = b;
@@ -84,10 +84,10 @@ PixelExplanation explain_pixel(const World& world, const PrimarySource& source, 
         std::vector<std::uint32_t>& blockers = out.blockers.emplace_back();
         for (const LightTerm& term : ray.lights) {
             out.tree_rays.shadow += term.shadow_rays;
-            blockers.push_back(term.in_front() && term.through == 0
-                                   ? first_blocker(world, ray.surface,
-                                                   world.lights()[term.light].position)
-                                   : kNoObject);
+            blockers.push_back(
+                term.in_front() && term.through == 0
+                    ? first_blocker(world, ray.surface, world.lights()[term.light].position)
+                    : kNoObject);
         }
     }
     if (ids) {

@@ -4,8 +4,8 @@
 // writes. docs/EXPLAIN.md shows it at work.
 #pragma once
 
-#include "trace/primary_hits.h"
 #include "trace/precision.h"
+#include "trace/primary_hits.h"
 #include "trace/recorder.h"
 
 #include <array>
@@ -16,9 +16,9 @@ inline namespace GLINT_PRECISION {
 
 // What the item buffer said at a sample, and how the exact resolve (trace/primary_hits.h) went.
 struct ItemBufferVerdict {
-    std::uint32_t id = 0;   // object + 1; 0: nothing drawn
-    float view_depth = 0;   // of what was drawn there
-    PrimaryStats resolve;   // this sample's share of the counters: which steps it took
+    std::uint32_t id = 0; // object + 1; 0: nothing drawn
+    float view_depth = 0; // of what was drawn there
+    PrimaryStats resolve; // this sample's share of the counters: which steps it took
     // The pixel centre's verdict in adaptive antialiasing's first pass, for a refined pixel whose
     // grid was traced by ray (trace/sampling.h: without rule 3 no N×N item buffer is drawn).
     bool first_pass = false;
@@ -29,9 +29,9 @@ struct ItemBufferVerdict {
 };
 
 struct PixelExplanation {
-    int x = 0, y = 0;  // the pixel
-    int n = 1;         // its N×N grid (the scene's samples)
-    int a = 0, b = 0;  // the sample explained: column and row in the grid
+    int x = 0, y = 0;              // the pixel
+    int n = 1;                     // its N×N grid (the scene's samples)
+    int a = 0, b = 0;              // the sample explained: column and row in the grid
     std::vector<RecordedRay> rays; // its tree, the primary ray first, depth first
     // Per ray that hit something: the ray in its object's space, M⁻¹·origin (w = 1) and
     // M⁻¹·direction (w = 0), as the intersection routine saw it; unset for misses.
@@ -53,8 +53,8 @@ struct PixelExplanation {
 // Explains sample (a, b) of pixel (x, y) (both in range: the caller checks), whose primary hits
 // come from `source` as in the render. `refined`: adaptive antialiasing refined this pixel (the
 // render's RenderResult::refined); ignored unless the scene is adaptive with N > 1.
-PixelExplanation explain_pixel(const World& world, const PrimarySource& source, int x, int y,
-                               int a, int b, bool refined = false);
+PixelExplanation explain_pixel(const World& world, const PrimarySource& source, int x, int y, int a,
+                               int b, bool refined = false);
 
 } // namespace GLINT_PRECISION
 } // namespace glint

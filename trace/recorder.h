@@ -23,10 +23,10 @@ inline namespace GLINT_PRECISION {
 // One light at a shaded surface point.
 struct LightTerm {
     std::uint32_t light = 0;
-    Real n_dot_l = 0;     // ≤ 0: the light is behind the surface, no shadow ray, no terms
-    Real through = 0;     // the light's fraction that arrives: 1 lit, 0 blocked, else glass
+    Real n_dot_l = 0; // ≤ 0: the light is behind the surface, no shadow ray, no terms
+    Real through = 0; // the light's fraction that arrives: 1 lit, 0 blocked, else glass
     std::uint64_t shadow_rays = 0; // segments cast (1 + glass crossings followed)
-    Vec3 diffuse{0}, specular{0};  // the terms added: through · colour · k_d(n·l), … k_s(r·v)^n
+    Vec3 diffuse{0}, specular{0}; // the terms added: through · colour · k_d(n·l), … k_s(r·v)^n
     bool in_front() const { return n_dot_l > 0; }
 };
 

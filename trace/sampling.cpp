@@ -106,9 +106,8 @@ GridPixel shade_grid(const World& world, int x, int y, const Hit* hits, RayRecor
     Real omitted = 0;
     for (int b = 0; b < n; ++b) {
         for (int a = 0; a < n; ++a) {
-            const PixelSample sample =
-                shade_pixel(world, camera.sample_ray(x, y, a, b, n), *hits++, {},
-                            b * n + a == recorded ? recorder : nullptr);
+            const PixelSample sample = shade_pixel(world, camera.sample_ray(x, y, a, b, n), *hits++,
+                                                   {}, b * n + a == recorded ? recorder : nullptr);
             sum += glm::clamp(sample.colour, Vec3(0), Vec3(1));
             omitted += sample.omitted_weight;
             pixel.rays += sample.rays;
@@ -202,14 +201,13 @@ void refine_adaptively(const World& world, const PrimarySource& source,
     // The rounds' scans count as shading; supersample times its own passes.
     const double timed_before = times.primary + times.shading;
     const Stopwatch rounds;
-    spread_refinement(
-        first, result.image, result.refined, settings.aa_threshold,
-        [&](const std::vector<std::uint8_t>& next) {
-            supersample(world, source, &next, result, stats,
-                        {progress.threads, nullptr, progress.exchange}, times);
-            if (progress.exchange) progress.exchange->share(result, nullptr);
-            return true;
-        });
+    spread_refinement(first, result.image, result.refined, settings.aa_threshold,
+                      [&](const std::vector<std::uint8_t>& next) {
+                          supersample(world, source, &next, result, stats,
+                                      {progress.threads, nullptr, progress.exchange}, times);
+                          if (progress.exchange) progress.exchange->share(result, nullptr);
+                          return true;
+                      });
     times.shading += rounds.seconds() - (times.primary + times.shading - timed_before);
 }
 

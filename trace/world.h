@@ -57,7 +57,7 @@ struct SurfacePoint {
     // rays through glass): the object for planar shapes and convex solids left from inside;
     // kNoObject for rays into a solid, which must still find its far wall.
     std::uint32_t skip_through = kNoObject;
-    bool entering = true; // the ray meets the side the shape's outward normal is on
+    bool entering = true;  // the ray meets the side the shape's outward normal is on
     Vec3 object_point{0};  // M⁻¹o + t·M⁻¹d, where the checker is evaluated
     Vec3 object_normal{0}; // the shape's outward normal there, object space (as the shape gives it)
     Vec3 spawn() const { return skip == kNoObject ? position + offset * normal : position; }
