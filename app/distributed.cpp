@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <mutex>
 
 #ifdef GLINT_HAVE_MPI
 #include <mpi.h>
@@ -52,11 +53,19 @@ int ranks() {
 
 int start_ranks() {
     if (launched_ranks() <= 1) return -1;
+    // Worker threads claim tiles (MPI_Fetch_and_op), one at a time under a mutex.
     int provided = 0;
-    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_SERIALIZED, &provided);
     joined_ = true;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
     MPI_Comm_size(MPI_COMM_WORLD, &ranks_);
+    if (provided < MPI_THREAD_SERIALIZED) {
+        if (rank_ == 0)
+            std::fprintf(stderr, "glint: error: this MPI does not let threads call it one at a "
+                                 "time (MPI_THREAD_SERIALIZED), which claiming tiles needs\n");
+        finish_ranks();
+        return 1;
+    }
     return -1;
 }
 
@@ -115,17 +124,41 @@ int guarded_on_ranks(const std::function<int()>& body) {
 
 namespace {
 
-// Interleaved tiles; each pass's pixels of this rank's tiles, packed tile by tile (colour 3
-// bytes, cut-off weight 4, id 4, path key 8 when asked), gathered by every rank.
+// Tiles claimed from a counter on rank 0 (an MPI window, fetch-and-add), counted from 0 again
+// after each loop's exchange; the exchange is every rank's list of tiles and their pixels, packed
+// tile by tile (colour 3 bytes, cut-off weight 4, id 4, path key 8 when asked), gathered by every
+// rank.
 class MpiExchange final : public TileExchange {
   public:
-    MpiExchange() : TileExchange(glint::rank(), glint::ranks()) {}
+    explicit MpiExchange(int tiles) : TileExchange(tiles), tiles_(tiles) {
+        std::int64_t* counter = nullptr;
+        MPI_Win_allocate(rank_ == 0 ? static_cast<MPI_Aint>(sizeof(std::int64_t)) : 0,
+                         sizeof(std::int64_t), MPI_INFO_NULL, MPI_COMM_WORLD, &counter, &window_);
+        if (rank_ == 0) *counter = 0;
+        MPI_Barrier(MPI_COMM_WORLD); // the counter is 0 before anyone adds to it
+        MPI_Win_lock_all(0, window_);
+    }
+    ~MpiExchange() override {
+        MPI_Win_unlock_all(window_);
+        MPI_Win_free(&window_);
+    }
     double seconds() const { return seconds_; }
 
-    void share(RenderResult& result, std::vector<std::uint64_t>* keys) const override {
+    int claim() override {
+        const std::lock_guard lock(mutex_);
+        if (exhausted_) return -1;
+        const std::int64_t one = 1;
+        std::int64_t tile = 0;
+        MPI_Fetch_and_op(&one, &tile, MPI_INT64_T, 0, 0, MPI_SUM, window_);
+        MPI_Win_flush(0, window_);
+        if (tile >= tiles_) exhausted_ = true;
+        return exhausted_ ? -1 : static_cast<int>(tile);
+    }
+
+    void share(RenderResult& result, std::vector<std::uint64_t>* keys) override {
         const Stopwatch watch;
         const int width = result.image.width, height = result.image.height;
-        const int tiles_x = (width + kTileSize - 1) / kTileSize, tiles = tile_count(width, height);
+        const int tiles_x = (width + kTileSize - 1) / kTileSize;
         const std::size_t pixel_bytes = 3 + 4 + 4 + (keys ? 8 : 0);
         // Calls visit(i) for each pixel index of tile t, in row order.
         const auto for_pixels = [&](int t, const auto& visit) {
@@ -134,8 +167,11 @@ class MpiExchange final : public TileExchange {
                 for (int x = x0; x < std::min(x0 + kTileSize, width); ++x)
                     visit(static_cast<std::size_t>(y) * width + x);
         };
+        std::vector<int> my_tiles;
         std::vector<char> mine;
-        for (int t = rank(); t < tiles; t += ranks()) {
+        for (int t = 0; t < tiles_; ++t) {
+            if (!this->mine()[static_cast<std::size_t>(t)]) continue;
+            my_tiles.push_back(t);
             for_pixels(t, [&](std::size_t i) {
                 const std::size_t at = mine.size();
                 mine.resize(at + pixel_bytes);
@@ -146,43 +182,73 @@ class MpiExchange final : public TileExchange {
                 if (keys) std::memcpy(p + 11, &(*keys)[i], 8);
             });
         }
-        if (mine.size() > static_cast<std::size_t>(INT_MAX))
+        // Every rank's tiles and pixels, in rank order, each rank's tiles ascending: as packed.
+        const std::vector<int> tiles = all_gather(my_tiles);
+        const std::vector<char> all = all_gather(mine);
+        const char* p = all.data();
+        for (const int t : tiles) {
+            if (this->mine()[static_cast<std::size_t>(t)]) { // this rank's own: already in place
+                p += pixels_in(t, width, height) * pixel_bytes;
+                continue;
+            }
+            for_pixels(t, [&](std::size_t i) {
+                std::memcpy(&result.image.rgb[3 * i], p, 3);
+                std::memcpy(&result.omitted_weight[i], p + 3, 4);
+                std::memcpy(&result.ids[i], p + 7, 4);
+                if (keys) std::memcpy(&(*keys)[i], p + 11, 8);
+                p += pixel_bytes;
+            });
+        }
+        // Every rank has finished claiming (it is here): the next loop counts from 0 again, and
+        // nobody claims before it does.
+        if (rank_ == 0) {
+            const std::int64_t zero = 0;
+            MPI_Accumulate(&zero, 1, MPI_INT64_T, 0, 0, 1, MPI_INT64_T, MPI_REPLACE, window_);
+            MPI_Win_flush(0, window_);
+        }
+        MPI_Barrier(MPI_COMM_WORLD);
+        next_loop();
+        exhausted_ = false;
+        seconds_ += watch.seconds();
+    }
+
+  private:
+    static std::size_t pixels_in(int t, int width, int height) {
+        const int tiles_x = (width + kTileSize - 1) / kTileSize;
+        const int x0 = (t % tiles_x) * kTileSize, y0 = (t / tiles_x) * kTileSize;
+        return static_cast<std::size_t>(std::min(kTileSize, width - x0)) *
+               static_cast<std::size_t>(std::min(kTileSize, height - y0));
+    }
+    // Every rank's `mine`, concatenated in rank order, on every rank.
+    template <class T> static std::vector<T> all_gather(const std::vector<T>& mine) {
+        const std::size_t bytes = mine.size() * sizeof(T);
+        if (bytes > static_cast<std::size_t>(INT_MAX))
             throw std::runtime_error("a rank's share of the frame is over 2 GiB: use more ranks");
-        const int count = static_cast<int>(mine.size());
-        std::vector<int> counts(static_cast<std::size_t>(ranks())), offsets(counts.size());
+        const int count = static_cast<int>(bytes);
+        std::vector<int> counts(static_cast<std::size_t>(ranks_)), offsets(counts.size());
         MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
         long long total = 0;
         for (std::size_t r = 0; r < counts.size(); ++r) {
             if (total > INT_MAX) throw std::runtime_error("the frame is over 2 GiB to exchange");
             offsets[r] = static_cast<int>(total), total += counts[r];
         }
-        std::vector<char> all(static_cast<std::size_t>(total));
+        std::vector<T> all(static_cast<std::size_t>(total) / sizeof(T));
         MPI_Allgatherv(mine.data(), count, MPI_BYTE, all.data(), counts.data(), offsets.data(),
                        MPI_BYTE, MPI_COMM_WORLD);
-        for (int r = 0; r < ranks(); ++r) {
-            if (r == rank()) continue;
-            const char* p = all.data() + offsets[static_cast<std::size_t>(r)];
-            for (int t = r; t < tiles; t += ranks()) {
-                for_pixels(t, [&](std::size_t i) {
-                    std::memcpy(&result.image.rgb[3 * i], p, 3);
-                    std::memcpy(&result.omitted_weight[i], p + 3, 4);
-                    std::memcpy(&result.ids[i], p + 7, 4);
-                    if (keys) std::memcpy(&(*keys)[i], p + 11, 8);
-                    p += pixel_bytes;
-                });
-            }
-        }
-        seconds_ += watch.seconds();
+        return all;
     }
 
-  private:
-    mutable double seconds_ = 0;
+    int tiles_;
+    MPI_Win window_ = MPI_WIN_NULL;
+    std::mutex mutex_; // one claim at a time (MPI_THREAD_SERIALIZED)
+    bool exhausted_ = false;
+    double seconds_ = 0;
 };
 
 } // namespace
 
-std::unique_ptr<TileExchange> make_exchange() {
-    return std::make_unique<MpiExchange>();
+std::unique_ptr<TileExchange> make_exchange(int tiles) {
+    return std::make_unique<MpiExchange>(tiles);
 }
 
 double exchange_seconds(const TileExchange& exchange) {
@@ -222,9 +288,10 @@ void sum_over_ranks(std::vector<std::uint64_t>& values) {
 int start_ranks() {
     if (launched_ranks() <= 1) return -1;
     if (launched_rank() == 0)
-        std::fprintf(stderr, "glint: error: started by mpirun with %d ranks, but this glint was "
-                             "built without MPI (install libopenmpi-dev and build again; "
-                             "./glint does both)\n",
+        std::fprintf(stderr,
+                     "glint: error: started by mpirun with %d ranks, but this glint was "
+                     "built without MPI (install libopenmpi-dev and build again; "
+                     "./glint does both)\n",
                      launched_ranks());
     return 2;
 }
@@ -240,7 +307,7 @@ int guarded_on_ranks(const std::function<int()>& body) {
     return guarded(body);
 }
 
-std::unique_ptr<TileExchange> make_exchange() {
+std::unique_ptr<TileExchange> make_exchange(int) {
     return nullptr;
 }
 

@@ -1,6 +1,6 @@
 // One frame across MPI ranks (docs/DISTRIBUTED.md): `mpirun -np N glint render …` (and a
 // `glint tradeoff` sweep spread over ranks, one setting per rank at a time). Every rank
-// loads the scene and builds its own structures; tiles are interleaved over the ranks
+// loads the scene and builds its own structures; tiles are handed out as ranks ask for them
 // (trace/tiles.h's TileExchange) and exchanged after each pass; rank 0 writes the PNG and
 // prints the report. Without mpirun, or in a build without MPI, glint is one process as always:
 // nothing here is called but the checks.
@@ -40,8 +40,9 @@ int agree_on(const std::function<void()>& step);
 // rank) and aborts every rank with the exit code a single run would give.
 int guarded_on_ranks(const std::function<int()>& body);
 
-// The pixel exchange of one frame over MPI, with the seconds it spent.
-std::unique_ptr<TileExchange> make_exchange();
+// The tile claims and pixel exchange of one frame of `tiles` tiles over MPI (collective: every
+// rank makes it, and lets it go, together), with the seconds its exchanges took.
+std::unique_ptr<TileExchange> make_exchange(int tiles);
 double exchange_seconds(const TileExchange& exchange);
 
 // What each rank did for one frame, gathered on rank 0 (one entry per rank there; empty

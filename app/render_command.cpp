@@ -200,23 +200,25 @@ Image refinement_map(const RenderResult& result) {
 void combine_ranks(Frame& frame, const RankFigures& mine, int threads) {
     RayCounts& rays = frame.result.rays;
     PrimaryStats& p = frame.primary_stats;
-    std::vector<std::uint64_t> sums = {rays.primary,  rays.shadow,  rays.reflection,
-                                       rays.transmission, p.exact_intersections, p.fallbacks,
-                                       p.corrected,   p.edges,     p.checked,
-                                       p.tests,       p.traced};
+    std::vector<std::uint64_t> sums = {
+        rays.primary, rays.shadow, rays.reflection, rays.transmission, p.exact_intersections,
+        p.fallbacks,  p.corrected, p.edges,         p.checked,         p.tests,
+        p.traced};
     sum_over_ranks(sums);
     rays = {sums[0], sums[1], sums[2], sums[3]};
     p.exact_intersections = sums[4], p.fallbacks = sums[5], p.corrected = sums[6];
     p.edges = sums[7], p.checked = sums[8], p.tests = sums[9], p.traced = sums[10];
     const std::vector<RankFigures> all = gather_figures(mine);
     if (rank() != 0) return;
-    std::printf("ranks: %d × %d threads, tiles interleaved, pixels exchanged after each pass\n",
+    std::printf("ranks: %d × %d threads, tiles claimed as ranks ask, pixels exchanged after each "
+                "pass\n",
                 ranks(), threads);
     for (std::size_t r = 0; r < all.size(); ++r) {
         const RankFigures& f = all[r];
-        std::printf("  rank %zu: %.0f tiles, %.2f M rays; load %.3f s, structures %.3f s, "
-                    "GL %.3f s, trace %.3f s, exchange %.3f s\n",
-                    r, f.tiles, f.rays / 1e6, f.load, f.prepare, f.gl, f.trace, f.exchange);
+        std::printf(
+            "  rank %zu: %.0f tiles (all passes), %.2f M rays; load %.3f s, structures %.3f s, "
+            "GL %.3f s, trace %.3f s, exchange %.3f s\n",
+            r, f.tiles, f.rays / 1e6, f.load, f.prepare, f.gl, f.trace, f.exchange);
     }
 }
 
@@ -232,7 +234,8 @@ int run_render(const RenderArgs& args) {
     if (!args.stats.empty()) world.count_traversals(true);
     const double prepare_seconds = phase.lap();
 
-    const std::unique_ptr<TileExchange> exchange = on_ranks() ? make_exchange() : nullptr;
+    const int tiles = tile_count(scene.camera.width, scene.camera.height);
+    const std::unique_ptr<TileExchange> exchange = on_ranks() ? make_exchange(tiles) : nullptr;
     FrameSettings settings = args.frame.settings();
     settings.exchange = exchange.get();
     std::atomic<int> tiles_done{0};
@@ -254,12 +257,10 @@ int run_render(const RenderArgs& args) {
         const PhaseTimes& t = frame.times;
         const double gl = t.context + t.compile + t.upload + t.raster;
         const double exchanged = exchange_seconds(*exchange);
-        const int tiles = tile_count(scene.camera.width, scene.camera.height);
-        const RayCounts rays = frame.result.rays;
         combine_ranks(frame,
                       {load_seconds, prepare_seconds, gl, frame_seconds - gl - exchanged, exchanged,
-                       static_cast<double>((tiles - rank() + ranks() - 1) / ranks()),
-                       static_cast<double>(rays.total())},
+                       static_cast<double>(exchange->tiles_taken()),
+                       static_cast<double>(frame.result.rays.total())},
                       threads);
         if (rank() != 0) return 0;
     }

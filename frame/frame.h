@@ -33,7 +33,7 @@ struct FrameSettings {
     bool aa_sample_ids = false;
     // One process of several rendering this frame (app/distributed.h): it traces its own tiles
     // and exchanges pixels with the others after each pass. Null: the whole frame here.
-    const TileExchange* exchange = nullptr;
+    TileExchange* exchange = nullptr;
 };
 
 // The one result of a render, in either mode and either precision.

@@ -228,37 +228,42 @@ Hit resolve_pixel(const World& world, const IdImage& ids, Resolve resolve, int x
         world, ids, resolve, x, y, [&] { return ray; }, stats);
 }
 
+void tile_primary_hits(const World& world, const PrimarySource& source, int x0, int y0, int x1,
+                       int y1, std::vector<Hit>& hits, PrimaryStats& stats) {
+    const PinholeCamera& camera = world.camera();
+    const int width = camera.width();
+    static_assert(kBlockSize * kBlockSize == kMaxPacket);
+    if (!source.ids) { // ray mode: the tile's camera rays in packets of a block each
+        for (int by = y0; by < y1; by += kBlockSize) {
+            for (int bx = x0; bx < x1; bx += kBlockSize) {
+                Ray rays[kMaxPacket];
+                Hit block[kMaxPacket];
+                std::size_t pixel[kMaxPacket], count = 0;
+                for_each_in_blocks(bx, by, std::min(bx + kBlockSize, x1),
+                                   std::min(by + kBlockSize, y1), [&](int x, int y) {
+                                       pixel[count] = static_cast<std::size_t>(y) * width + x;
+                                       rays[count++] = camera.ray(x, y);
+                                   });
+                world.intersect_packet({rays, count}, block);
+                for (std::size_t r = 0; r < count; ++r) hits[pixel[r]] = block[r];
+            }
+        }
+        return;
+    }
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x)
+            hits[static_cast<std::size_t>(y) * width + x] = resolve_with(
+                world, *source.ids, source.resolve, x, y, [&] { return camera.ray(x, y); }, stats);
+}
+
 std::vector<Hit> primary_hits(const World& world, const PrimarySource& source, PrimaryStats& stats,
                               const TileProgress& progress) {
     const PinholeCamera& camera = world.camera();
-    const int width = camera.width();
-    std::vector<Hit> hits(static_cast<std::size_t>(width) * camera.height());
+    std::vector<Hit> hits(static_cast<std::size_t>(camera.width()) * camera.height());
     std::mutex stats_mutex;
-    static_assert(kBlockSize * kBlockSize == kMaxPacket);
-    for_each_tile(width, camera.height(), progress, [&](int x0, int y0, int x1, int y1) {
+    for_each_tile(camera.width(), camera.height(), progress, [&](int x0, int y0, int x1, int y1) {
         PrimaryStats local;
-        if (!source.ids) { // ray mode: the tile's camera rays in packets of a block each
-            for (int by = y0; by < y1; by += kBlockSize) {
-                for (int bx = x0; bx < x1; bx += kBlockSize) {
-                    Ray rays[kMaxPacket];
-                    Hit block[kMaxPacket];
-                    std::size_t pixel[kMaxPacket], count = 0;
-                    for_each_in_blocks(bx, by, std::min(bx + kBlockSize, x1),
-                                       std::min(by + kBlockSize, y1), [&](int x, int y) {
-                                           pixel[count] = static_cast<std::size_t>(y) * width + x;
-                                           rays[count++] = camera.ray(x, y);
-                                       });
-                    world.intersect_packet({rays, count}, block);
-                    for (std::size_t r = 0; r < count; ++r) hits[pixel[r]] = block[r];
-                }
-            }
-            return;
-        }
-        for (int y = y0; y < y1; ++y)
-            for (int x = x0; x < x1; ++x)
-                hits[static_cast<std::size_t>(y) * width + x] = resolve_with(
-                    world, *source.ids, source.resolve, x, y, [&] { return camera.ray(x, y); },
-                    local);
+        tile_primary_hits(world, source, x0, y0, x1, y1, hits, local);
         const std::lock_guard lock(stats_mutex);
         stats += local;
     });

@@ -95,6 +95,11 @@ inline Hit primary_hit(const World& world, const PrimarySource& source, int x, i
                       : world.intersect(ray);
 }
 
+// The primary hits of tile [x0, x1)×[y0, y1) into `hits` (the whole image's, row-major): camera
+// rays in packets (ray mode) or the id image resolved (hybrid).
+void tile_primary_hits(const World& world, const PrimarySource& source, int x0, int y0, int x1,
+                       int y1, std::vector<Hit>& hits, PrimaryStats& stats);
+
 // Every pixel's primary hit from `source`, row-major, top row first.
 std::vector<Hit> primary_hits(const World& world, const PrimarySource& source, PrimaryStats& stats,
                               const TileProgress& progress = {});

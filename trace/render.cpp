@@ -9,35 +9,86 @@
 namespace glint {
 inline namespace GLINT_PRECISION {
 
+namespace {
+
+// Shades tile [x0, x1)×[y0, y1) from its primary hits into `result` (and `path_keys`, where
+// given); returns the rays it cast. The tile's pixels go in blocks, so that its shadow rays go in
+// packets of neighbours.
+RayCounts shade_tile(const World& world, const std::vector<Hit>& primary, int x0, int y0, int x1,
+                     int y1, RenderResult& result, std::vector<std::uint64_t>* path_keys) {
+    const PinholeCamera& camera = world.camera();
+    const int width = camera.width();
+    std::vector<std::size_t> pixels;
+    std::vector<Ray> rays;
+    std::vector<Hit> hits;
+    for_each_in_blocks(x0, y0, x1, y1, [&](int x, int y) {
+        pixels.push_back(static_cast<std::size_t>(y) * width + x);
+        rays.push_back(camera.ray(x, y));
+        hits.push_back(primary[pixels.back()]);
+    });
+    const TileLighting lighting(world, rays, hits);
+    RayCounts counts;
+    for (std::size_t k = 0; k < pixels.size(); ++k) {
+        const std::size_t i = pixels[k];
+        const PixelSample sample = shade_pixel(world, rays[k], hits[k], lighting.at(k));
+        result.omitted_weight[i] = static_cast<float>(sample.omitted_weight);
+        if (path_keys) (*path_keys)[i] = sample.path_key;
+        store_colour(sample.colour,
+                     result.image.pixel(static_cast<int>(i % width), static_cast<int>(i / width)));
+        counts += sample.rays;
+    }
+    return counts;
+}
+
+RenderResult blank_result(const PinholeCamera& camera, std::vector<std::uint64_t>* path_keys) {
+    const std::size_t pixels = static_cast<std::size_t>(camera.width()) * camera.height();
+    RenderResult result{Image(camera.width(), camera.height()), {}, {}, {}, {}};
+    result.omitted_weight.assign(pixels, 0.0f);
+    if (path_keys) path_keys->assign(pixels, 0);
+    return result;
+}
+
+// One process of several (progress.exchange): primary hits and shading tile by tile in one loop,
+// so that the tiles it claims need nothing from another process; the two phases' shares of the
+// loop's wall time as their summed tile times say.
+RenderResult trace_claimed_tiles(const World& world, const PrimarySource& source,
+                                 PrimaryStats& stats, const TileProgress& progress,
+                                 PhaseTimes& times, std::vector<std::uint64_t>* path_keys) {
+    const PinholeCamera& camera = world.camera();
+    std::vector<Hit> primary(static_cast<std::size_t>(camera.width()) * camera.height());
+    RenderResult result = blank_result(camera, path_keys);
+    std::mutex mutex;
+    double primary_seconds = 0, shading_seconds = 0;
+    const Stopwatch wall;
+    for_each_tile(camera.width(), camera.height(), progress, [&](int x0, int y0, int x1, int y1) {
+        Stopwatch watch;
+        PrimaryStats local;
+        tile_primary_hits(world, source, x0, y0, x1, y1, primary, local);
+        const double hits_seconds = watch.lap();
+        const RayCounts counts = shade_tile(world, primary, x0, y0, x1, y1, result, path_keys);
+        const double shade_seconds = watch.lap();
+        const std::lock_guard lock(mutex); // integer sums: order does not matter
+        stats += local, result.rays += counts;
+        primary_seconds += hits_seconds, shading_seconds += shade_seconds;
+    });
+    result.ids = object_ids(primary); // the other processes' tiles come with the exchange
+    const double seconds = wall.seconds(), busy = primary_seconds + shading_seconds;
+    const double primary_share = busy > 0 ? primary_seconds / busy : 0;
+    times.primary += seconds * primary_share;
+    times.shading += seconds * (1 - primary_share);
+    return result;
+}
+
+} // namespace
+
 RenderResult shade_image(const World& world, const std::vector<Hit>& primary,
                          const TileProgress& progress, std::vector<std::uint64_t>* path_keys) {
     const PinholeCamera& camera = world.camera();
-    const int width = camera.width();
-    RenderResult result{Image(width, camera.height()), {}, {}, object_ids(primary), {}};
-    result.omitted_weight.assign(primary.size(), 0.0f);
-    if (path_keys) path_keys->assign(primary.size(), 0);
+    RenderResult result = blank_result(camera, path_keys);
+    result.ids = object_ids(primary);
     std::mutex counts_mutex;
-    for_each_tile(width, camera.height(), progress, [&](int x0, int y0, int x1, int y1) {
-        // The tile's pixels in blocks, so that its shadow rays go in packets of neighbours.
-        std::vector<std::size_t> pixels;
-        std::vector<Ray> rays;
-        std::vector<Hit> hits;
-        for_each_in_blocks(x0, y0, x1, y1, [&](int x, int y) {
-            pixels.push_back(static_cast<std::size_t>(y) * width + x);
-            rays.push_back(camera.ray(x, y));
-            hits.push_back(primary[pixels.back()]);
-        });
-        const TileLighting lighting(world, rays, hits);
-        RayCounts counts;
-        for (std::size_t k = 0; k < pixels.size(); ++k) {
-            const std::size_t i = pixels[k];
-            const PixelSample sample = shade_pixel(world, rays[k], hits[k], lighting.at(k));
-            result.omitted_weight[i] = static_cast<float>(sample.omitted_weight);
-            if (path_keys) (*path_keys)[i] = sample.path_key;
-            store_colour(sample.colour, result.image.pixel(static_cast<int>(i % width),
-                                                           static_cast<int>(i / width)));
-            counts += sample.rays;
-        }
+    for_each_tile(camera.width(), camera.height(), progress, [&](int x0, int y0, int x1, int y1) {
+        const RayCounts counts = shade_tile(world, primary, x0, y0, x1, y1, result, path_keys);
         const std::lock_guard lock(counts_mutex); // integer sums: order does not matter
         result.rays += counts;
     });
@@ -72,12 +123,18 @@ RenderResult trace_frame(const World& world, const PrimarySource& source, Primar
     // One sample per pixel, at its centre: the whole image with N = 1, and adaptive
     // antialiasing's first pass.
     const bool adaptive = settings.samples > 1;
-    const std::vector<Hit> primary =
-        timed(times.primary, [&] { return primary_hits(world, source, stats, progress); });
     std::vector<std::uint64_t> path_keys;
-    RenderResult result = timed(times.shading, [&] {
-        return shade_image(world, primary, progress, adaptive ? &path_keys : nullptr);
-    });
+    RenderResult result;
+    if (progress.exchange) {
+        result = trace_claimed_tiles(world, source, stats, progress, times,
+                                     adaptive ? &path_keys : nullptr);
+    } else {
+        const std::vector<Hit> primary =
+            timed(times.primary, [&] { return primary_hits(world, source, stats, progress); });
+        result = timed(times.shading, [&] {
+            return shade_image(world, primary, progress, adaptive ? &path_keys : nullptr);
+        });
+    }
     share(result, adaptive ? &path_keys : nullptr);
     if (adaptive) refine_adaptively(world, source, path_keys, result, stats, progress, times);
     return result;

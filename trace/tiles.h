@@ -18,30 +18,42 @@ inline constexpr int kTileSize = 32;
 
 struct RenderResult; // trace/precision.h
 
-// One frame rendered by several processes (docs/DISTRIBUTED.md): this one, `rank` of `ranks`,
-// traces tiles rank, rank + ranks, rank + 2·ranks, … (interleaved, so that every process gets
-// tiles from every part of the image), and after each pass `share` gives every process the
-// others' pixels, so that a pass that reads its neighbours (adaptive antialiasing) reads the
-// whole image, as in one process.
+// One frame rendered by several processes (docs/DISTRIBUTED.md). Every tile loop of the frame
+// hands its tiles out as the processes ask for them (`claim`: the next tile nobody has taken in
+// this loop, from a counter they share), so that a process that is slowed down takes fewer; after
+// each loop `share` gives every process the others' pixels and starts the next loop's count, so
+// that a pass that reads its neighbours (adaptive antialiasing) reads the whole image, as in one
+// process. A loop's tiles must need nothing but the image before it: trace_frame fuses primary
+// hits and shading into one loop for this (trace/render.cpp).
 class TileExchange {
   public:
-    TileExchange(int rank, int ranks) : rank_(rank), ranks_(ranks) {}
+    explicit TileExchange(int tiles) : mine_(static_cast<std::size_t>(tiles), 0) {}
     virtual ~TileExchange() = default;
-    int rank() const { return rank_; }
-    int ranks() const { return ranks_; }
-    bool owns(int tile) const { return tile % ranks_ == rank_; }
-    // After a pass over this process's tiles: their pixels of `result` (colour, cut-off weight,
-    // id) and of `keys` (where given) to every process, the others' into this one's.
-    virtual void share(RenderResult& result, std::vector<std::uint64_t>* keys) const = 0;
+    // The loop's next tile, or −1 once every tile of the loop is taken; any thread may ask.
+    virtual int claim() = 0;
+    void take(int tile) { // claimed here
+        mine_[static_cast<std::size_t>(tile)] = 1;
+        taken_.fetch_add(1, std::memory_order_relaxed);
+    }
+    // After a loop over this process's tiles: their pixels of `result` (colour, cut-off weight,
+    // id) and of `keys` (where given) to every process, the others' into this one's; then the
+    // next loop's tiles are handed out afresh.
+    virtual void share(RenderResult& result, std::vector<std::uint64_t>* keys) = 0;
+    int tiles_taken() const { return taken_.load(std::memory_order_relaxed); } // all loops
+
+  protected:
+    const std::vector<std::uint8_t>& mine() const { return mine_; } // this loop's, per tile
+    void next_loop() { std::fill(mine_.begin(), mine_.end(), 0); }
 
   private:
-    int rank_, ranks_;
+    std::vector<std::uint8_t> mine_;
+    std::atomic<int> taken_{0};
 };
 
 struct TileProgress {
     int threads = 0;                        // 0: all cores
     std::atomic<int>* tiles_done = nullptr; // counted as tiles finish
-    const TileExchange* exchange = nullptr; // one process of several: its tiles only
+    TileExchange* exchange = nullptr;       // one process of several: its tiles only
 };
 
 inline int tile_count(int width, int height) {
@@ -71,18 +83,24 @@ template <class Body> void for_each_in_blocks(int x0, int y0, int x1, int y1, co
                 for (int x = bx; x < std::min(bx + kBlockSize, x1); ++x) body(x, y);
 }
 
-// Calls body(x0, y0, x1, y1) for each tile of a width×height image (each this process owns, with
-// an exchange), in parallel.
+// Calls body(x0, y0, x1, y1) for each tile of a width×height image, in parallel. With an
+// exchange, for the tiles this process claims (each iteration asks for the next tile instead of
+// taking its own index).
 template <class Body>
 void for_each_tile(int width, int height, const TileProgress& progress, const Body& body) {
     const int tiles_x = (width + kTileSize - 1) / kTileSize;
+    TileExchange* const exchange = progress.exchange;
     tbb::task_arena arena(progress.threads > 0 ? progress.threads : tbb::task_arena::automatic);
     arena.execute([&] {
         tbb::parallel_for(
             tbb::blocked_range<int>(0, tile_count(width, height), 1),
             [&](const tbb::blocked_range<int>& r) {
-                for (int tile = r.begin(); tile != r.end(); ++tile) {
-                    if (progress.exchange && !progress.exchange->owns(tile)) continue;
+                for (int index = r.begin(); index != r.end(); ++index) {
+                    int tile = index;
+                    if (exchange) {
+                        if ((tile = exchange->claim()) < 0) continue;
+                        exchange->take(tile);
+                    }
                     const int x0 = (tile % tiles_x) * kTileSize, y0 = (tile / tiles_x) * kTileSize;
                     body(x0, y0, std::min(x0 + kTileSize, width), std::min(y0 + kTileSize, height));
                     if (progress.tiles_done)
