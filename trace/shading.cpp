@@ -88,9 +88,9 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoin
     for (std::size_t j = 0; j < world.lights().size(); ++j) {
         const Light& light = world.lights()[j];
         const auto [l, n_dot_l] = light_direction(surface, light);
-        LightTerm term{static_cast<std::uint32_t>(j), n_dot_l};
+        const auto index = static_cast<std::uint32_t>(j);
         if (n_dot_l <= 0) { // the light is behind the surface
-            if (recorder) recorder->light(term);
+            if (recorder) recorder->light({index, n_dot_l});
             continue;
         }
         const std::uint64_t shadow_rays = counts.shadow;
@@ -98,24 +98,22 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoin
                                          : light_through(world, surface, light.position, counts);
         // The verdict: blocked, or how many segments (1 + glass crossings) reached the light.
         tree.note(through == 0 ? ~std::uint64_t{0} : counts.shadow - shadow_rays);
-        term.through = through, term.shadow_rays = counts.shadow - shadow_rays;
         if (through == 0) {
-            if (recorder) recorder->light(term);
+            if (recorder) recorder->light({index, n_dot_l, 0, counts.shadow - shadow_rays});
             continue;
         }
-        const Vec3 lit_diffuse = diffuse * n_dot_l;
-        Vec3 lit = lit_diffuse, specular(0);
+        Vec3 lit = diffuse * n_dot_l;
+        Real highlight = 0; // (r·v)^shininess
         if (m.specular != Vec3(0.0_r)) { // pow is dear, and NFF's matte surfaces have 1e5
             const Vec3 r = 2.0_r * n * n_dot_l - l; // reflect(−l, n)
-            specular = m.specular * std::pow(glm::max(0.0_r, glm::dot(r, v)), m.shininess);
-            lit += specular;
+            highlight = std::pow(glm::max(0.0_r, glm::dot(r, v)), m.shininess);
+            lit += m.specular * highlight;
         }
         colour += (through * light.color) * lit;
-        if (recorder) {
-            term.diffuse = (through * light.color) * lit_diffuse;
-            term.specular = (through * light.color) * specular;
-            recorder->light(term);
-        }
+        if (recorder)
+            recorder->light({index, n_dot_l, through, counts.shadow - shadow_rays,
+                             (through * light.color) * (diffuse * n_dot_l),
+                             (through * light.color) * (m.specular * highlight)});
     }
 
     // Reflected and transmitted rays, each cast only while it can still matter: below
