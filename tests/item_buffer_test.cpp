@@ -416,7 +416,8 @@ INSTANTIATE_TEST_SUITE_P(ShippedScenes, HybridTest, ::testing::ValuesIn(every_sc
 
 // `glint explain` in hybrid mode (ray mode: explain_test.cpp): on every shipped scene with its own
 // antialiasing, at a few hundred pixels each, the bytes it reports are the rendered ones, from
-// the same item buffer and resolve; with trust too, whose images may differ from ray mode's.
+// the same item buffer and exact resolve (the default raster mode); and at a hundred pixels with
+// mesh raster and trust, whose images may differ from ray mode's.
 TEST(HybridExplain, ReportsTheRenderedBytesAtHundredsOfPixelsOfEveryShippedScene) {
     for (const char* name : testing::kShippedScenes) {
         for (const auto& [raster, resolve] : {std::pair{RasterMode::automatic, Resolve::exact},
