@@ -434,23 +434,19 @@ void Preview::draw_panel() {
                     log_.worlds.empty() ? log_.first_world : log_.worlds.back(), item_buffer_ms_);
         ImGui::Text("last frame (UI) %.1f ms",
                     log_.frames.empty() ? log_.first_frame : log_.frames.back());
-        ImGui::Text("rays: %llu primary, %llu shadow",
-                    static_cast<unsigned long long>(rays.primary),
-                    static_cast<unsigned long long>(rays.shadow));
-        ImGui::Text("      %llu reflection, %llu transmission",
-                    static_cast<unsigned long long>(rays.reflection),
-                    static_cast<unsigned long long>(rays.transmission));
+        // A line of two counters.
+        const auto counts = [](const char* format, std::uint64_t a, std::uint64_t b) {
+            ImGui::Text(format, static_cast<unsigned long long>(a),
+                        static_cast<unsigned long long>(b));
+        };
+        counts("rays: %llu primary, %llu shadow", rays.primary, rays.shadow);
+        counts("      %llu reflection, %llu transmission", rays.reflection, rays.transmission);
         if (frame_.mode == Mode::hybrid) {
             const PrimaryStats p = job_->primary_stats();
-            ImGui::Text("resolve: %llu direct, %llu corrected",
-                        static_cast<unsigned long long>(p.exact_intersections - p.fallbacks),
-                        static_cast<unsigned long long>(p.corrected));
-            ImGui::Text("         %llu fallbacks, %llu on edges",
-                        static_cast<unsigned long long>(p.fallbacks),
-                        static_cast<unsigned long long>(p.edges));
-            ImGui::Text("         %llu checked, %llu traced in full",
-                        static_cast<unsigned long long>(p.checked),
-                        static_cast<unsigned long long>(p.traced));
+            counts("resolve: %llu direct, %llu corrected", p.exact_intersections - p.fallbacks,
+                   p.corrected);
+            counts("         %llu fallbacks, %llu on edges", p.fallbacks, p.edges);
+            counts("         %llu checked, %llu traced in full", p.checked, p.traced);
         }
         if (scene_.render.samples > 1)
             ImGui::Text("antialiasing: %llu pixels took the grid",
