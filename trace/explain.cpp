@@ -2,6 +2,7 @@
 
 #include "trace/render.h"
 #include "trace/sampling.h"
+#include "trace/shading.h"
 
 namespace glint {
 inline namespace GLINT_PRECISION {
@@ -20,7 +21,7 @@ namespace {
 std::uint32_t first_blocker(const World& world, const SurfacePoint& surface, Vec3 light) {
     Ray segment = shadow_ray(surface, light);
     std::uint32_t skip = surface.skip;
-    for (int crossing = 0; crossing < 64; ++crossing) {
+    for (int crossing = 0; crossing < kMaxCrossings; ++crossing) {
         const Hit hit = world.intersect(segment, 1.0_r, skip);
         if (!hit.found()) break;
         if (world.material(hit.object).transmission == 0) return hit.object;

@@ -19,10 +19,6 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, int depth, Real w
 
 namespace {
 
-// Shadow rays are followed through at most this many transmissive crossings; a light behind more
-// is taken as blocked (64 panes of glass pass at most 0.9⁶⁴ ≈ 1e-3 of it).
-constexpr int kMaxCrossings = 64;
-
 // Whether the checker's cell at object-space point q is odd (docs/SCENES.md): k = ⌊q.x/s⌋ +
 // ⌊q.z/s⌋ on shapes whose checker lies in their plane (planes, disks), + ⌊q.y/s⌋ on the others;
 // the parity in the floor sense (k = −1 is odd). In double: the floors are exact integers.

@@ -15,6 +15,10 @@ inline namespace GLINT_PRECISION {
 // reaches it; what it cuts is counted in the cut-off bound like any omitted ray.
 inline constexpr std::uint64_t kMaxTreeRays = 1024;
 
+// Shadow rays are followed through at most this many transmissive crossings; a light behind more
+// is taken as blocked (64 panes of glass pass at most 0.9⁶⁴ ≈ 1e-3 of it).
+inline constexpr int kMaxCrossings = 64;
+
 class RayRecorder; // trace/recorder.h
 
 // What one pixel's ray tree tallies besides its colour.
