@@ -54,6 +54,14 @@ struct PhaseTimes {
     double shading = 0; // shading, shadow and reflection rays
 
     double primary_visibility() const { return raster + primary; }
+    // A loop that did both per tile took `wall` seconds: shared between primary and shading in
+    // the ratio of its tiles' summed times for each.
+    void add_split(double wall, double primary_busy, double shading_busy) {
+        const double busy = primary_busy + shading_busy;
+        const double primary_share = busy > 0 ? primary_busy / busy : 0;
+        primary += wall * primary_share;
+        shading += wall * (1 - primary_share);
+    }
     double total() const {
         return prepare + context + compile + upload + raster + primary + shading;
     }

@@ -72,10 +72,7 @@ RenderResult trace_claimed_tiles(const World& world, const PrimarySource& source
         primary_seconds += hits_seconds, shading_seconds += shade_seconds;
     });
     result.ids = object_ids(primary); // the other processes' tiles come with the exchange
-    const double seconds = wall.seconds(), busy = primary_seconds + shading_seconds;
-    const double primary_share = busy > 0 ? primary_seconds / busy : 0;
-    times.primary += seconds * primary_share;
-    times.shading += seconds * (1 - primary_share);
+    times.add_split(wall.seconds(), primary_seconds, shading_seconds);
     return result;
 }
 

@@ -169,10 +169,7 @@ void supersample(const World& world, const PrimarySource& source,
         primary_seconds += primary, shading_seconds += shading;
         if (progress.tiles_done) progress.tiles_done->fetch_add(1, std::memory_order_relaxed);
     });
-    const double seconds = wall.seconds(), busy = primary_seconds + shading_seconds;
-    const double primary_share = busy > 0 ? primary_seconds / busy : 0;
-    times.primary += seconds * primary_share;
-    times.shading += seconds * (1 - primary_share);
+    times.add_split(wall.seconds(), primary_seconds, shading_seconds);
 }
 
 RenderResult render_uniform_grids(const World& world, const PrimarySource& source,
