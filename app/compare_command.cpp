@@ -55,7 +55,7 @@ Comparison compare(const CompareArgs& args, const Scene& scene, const World& wor
     Frame ray = render_frame(world, settings);
     settings.mode = Mode::hybrid;
     Frame hybrid = render_frame(world, settings);
-    const ImageDifference diff = compare_images(ray.result.image, hybrid.result.image);
+    const ImageDifference diff = compare_results(ray.result, hybrid.result);
     const double agreement = id_agreement(ray.result.ids, hybrid.result.ids);
     // Per frame, the one-time set-up (context, shaders, upload) aside: what a preview pays again
     // for every frame. The whole-frame ratio counts everything a single render pays.
@@ -119,6 +119,9 @@ void print_comparison(const CompareArgs& args, const Comparison& c) {
     std::printf("max abs error:       %d/255\n", c.diff.max_abs_error);
     std::printf("pixels off > 1/255:  %.4f%% (%llu)\n", 100 * c.diff.fraction_over_one,
                 static_cast<unsigned long long>(c.diff.pixels_over_one));
+    std::printf("pixels off > 2/255:  %.4f%%\n", 100 * c.diff.fraction_over_two);
+    std::printf("radiance error:      RMSE %.3g, largest %.3g (linear, unclamped)\n", c.diff.rmse,
+                c.diff.max_radiance_error);
 }
 
 // --json: the same figures, for scripts (bench/crossover.py).
@@ -151,6 +154,9 @@ nlohmann::ordered_json comparison_json(const CompareArgs& args, const Comparison
                                                : nlohmann::ordered_json(c.diff.psnr_db)},
         {"max_abs_error", c.diff.max_abs_error},
         {"fraction_over_1_255", c.diff.fraction_over_one},
+        {"fraction_over_2_255", c.diff.fraction_over_two},
+        {"rmse_radiance", c.diff.rmse},
+        {"max_error_radiance", c.diff.max_radiance_error},
         {"pixels", static_cast<double>(c.ray.result.ids.size())},
     };
 }
@@ -161,10 +167,10 @@ int run_compare(const CompareArgs& args) {
     const Comparison c = compare(args, scene, world);
     print_comparison(args, c);
     if (!args.prefix.empty()) {
-        const Image& ray = c.ray.result.image;
+        const Image ray = c.ray.result.bytes(), hybrid = c.hybrid.result.bytes();
         write_png(args.prefix + "-ray.png", ray);
-        write_png(args.prefix + "-hybrid.png", c.hybrid.result.image);
-        write_png(args.prefix + "-diff.png", difference_heatmap(ray, c.hybrid.result.image));
+        write_png(args.prefix + "-hybrid.png", hybrid);
+        write_png(args.prefix + "-diff.png", difference_heatmap(ray, hybrid));
         // What the item buffer drew at each pixel centre, or, with a uniform sample grid and
         // no centre pass, at each pixel's sample (N/2, N/2).
         std::vector<std::uint32_t> drawn;

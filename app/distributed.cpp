@@ -1,7 +1,6 @@
 #include "app/distributed.h"
 
 #include "app/options.h"
-#include "trace/precision.h"
 #include "trace/scene_loader.h"
 
 #include <climits>
@@ -157,47 +156,31 @@ class MpiExchange final : public TileExchange {
 
     void share(RenderResult& result, std::vector<std::uint64_t>* keys) override {
         const Stopwatch watch;
-        const int width = result.image.width, height = result.image.height;
-        const int tiles_x = (width + kTileSize - 1) / kTileSize;
-        const std::size_t pixel_bytes = 3 + 4 + 4 + (keys ? 8 : 0);
-        // Calls visit(i) for each pixel index of tile t, in row order.
-        const auto for_pixels = [&](int t, const auto& visit) {
-            const int x0 = (t % tiles_x) * kTileSize, y0 = (t / tiles_x) * kTileSize;
-            for (int y = y0; y < std::min(y0 + kTileSize, height); ++y)
-                for (int x = x0; x < std::min(x0 + kTileSize, width); ++x)
-                    visit(static_cast<std::size_t>(y) * width + x);
-        };
+        const int width = result.radiance.width, height = result.radiance.height;
         std::vector<int> my_tiles;
         std::vector<char> mine;
         for (int t = 0; t < tiles_; ++t) {
             if (!this->mine()[static_cast<std::size_t>(t)]) continue;
             my_tiles.push_back(t);
-            for_pixels(t, [&](std::size_t i) {
-                const std::size_t at = mine.size();
-                mine.resize(at + pixel_bytes);
-                char* p = &mine[at];
-                std::memcpy(p, &result.image.rgb[3 * i], 3);
-                std::memcpy(p + 3, &result.omitted_weight[i], 4);
-                std::memcpy(p + 7, &result.ids[i], 4);
-                if (keys) std::memcpy(p + 11, &(*keys)[i], 8);
-            });
+            for_each_pixel_of_tile(width, height, t,
+                                   [&](std::size_t i) { pack_pixel(result, keys, i, mine); });
         }
         // Every rank's tiles and pixels, in rank order, each rank's tiles ascending: as packed.
         const std::vector<int> tiles = all_gather(my_tiles);
         const std::vector<char> all = all_gather(mine);
-        const char* p = all.data();
+        const char* at = all.data();
+        const char* const end = at + all.size();
+        // Every pixel packs the same layers, so this rank's own tiles (already in place) are
+        // skipped by their size.
+        std::vector<char> one;
+        pack_pixel(result, keys, 0, one);
         for (const int t : tiles) {
-            if (this->mine()[static_cast<std::size_t>(t)]) { // this rank's own: already in place
-                p += pixels_in(t, width, height) * pixel_bytes;
+            if (this->mine()[static_cast<std::size_t>(t)]) {
+                at += tile_rect(width, height, t).pixels() * one.size();
                 continue;
             }
-            for_pixels(t, [&](std::size_t i) {
-                std::memcpy(&result.image.rgb[3 * i], p, 3);
-                std::memcpy(&result.omitted_weight[i], p + 3, 4);
-                std::memcpy(&result.ids[i], p + 7, 4);
-                if (keys) std::memcpy(&(*keys)[i], p + 11, 8);
-                p += pixel_bytes;
-            });
+            for_each_pixel_of_tile(width, height, t,
+                                   [&](std::size_t i) { unpack_pixel(result, keys, i, at, end); });
         }
         // Every rank has finished claiming (it is here): the next loop counts from 0 again, and
         // nobody claims before it does.
@@ -213,12 +196,6 @@ class MpiExchange final : public TileExchange {
     }
 
   private:
-    static std::size_t pixels_in(int t, int width, int height) {
-        const int tiles_x = (width + kTileSize - 1) / kTileSize;
-        const int x0 = (t % tiles_x) * kTileSize, y0 = (t / tiles_x) * kTileSize;
-        return static_cast<std::size_t>(std::min(kTileSize, width - x0)) *
-               static_cast<std::size_t>(std::min(kTileSize, height - y0));
-    }
     // Every rank's `mine`, concatenated in rank order, on every rank.
     template <class T> static std::vector<T> all_gather(const std::vector<T>& mine) {
         const std::size_t bytes = mine.size() * sizeof(T);
@@ -255,32 +232,37 @@ double exchange_seconds(const TileExchange& exchange) {
     return static_cast<const MpiExchange&>(exchange).seconds();
 }
 
-std::vector<RankFigures> gather_figures(const RankFigures& mine) {
-    std::vector<RankFigures> all(rank_ == 0 ? static_cast<std::size_t>(ranks_) : 0);
-    constexpr int kFields = sizeof(RankFigures) / sizeof(double);
-    MPI_Gather(&mine, kFields, MPI_DOUBLE, all.data(), kFields, MPI_DOUBLE, 0, MPI_COMM_WORLD);
-    return all;
-}
-
-std::vector<std::vector<double>> gather_numbers(const std::vector<double>& mine) {
+std::vector<std::vector<char>> gather_bytes(const std::vector<char>& mine) {
     const int count = static_cast<int>(mine.size());
     std::vector<int> counts(static_cast<std::size_t>(ranks_)), offsets(counts.size());
     MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
     int total = 0;
     for (std::size_t r = 0; r < counts.size(); ++r) offsets[r] = total, total += counts[r];
-    std::vector<double> all(rank_ == 0 ? static_cast<std::size_t>(total) : 0);
-    MPI_Gatherv(mine.data(), count, MPI_DOUBLE, all.data(), counts.data(), offsets.data(),
-                MPI_DOUBLE, 0, MPI_COMM_WORLD);
-    std::vector<std::vector<double>> out;
+    std::vector<char> all(rank_ == 0 ? static_cast<std::size_t>(total) : 0);
+    MPI_Gatherv(mine.data(), count, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE,
+                0, MPI_COMM_WORLD);
+    std::vector<std::vector<char>> out;
     if (rank_ == 0)
         for (std::size_t r = 0; r < counts.size(); ++r)
             out.emplace_back(all.begin() + offsets[r], all.begin() + offsets[r] + counts[r]);
     return out;
 }
 
-void sum_over_ranks(std::vector<std::uint64_t>& values) {
+std::vector<RankFigures> gather_figures(const RankFigures& mine) {
+    std::vector<RankFigures> all;
+    for (const std::vector<RankFigures>& rank_figures : gather_records(std::vector{mine}))
+        all.push_back(rank_figures.at(0));
+    return all;
+}
+
+void sum_over_ranks(FrameCounters& counters) {
+    // The counters as one array, in their fields' order, summed, and read back in that order.
+    std::vector<std::uint64_t> values;
+    for_each_field(counters, [&](const std::string&, std::uint64_t value) { values.push_back(value); });
     MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_UINT64_T,
                   MPI_SUM, MPI_COMM_WORLD);
+    std::size_t k = 0;
+    for_each_field(counters, [&](const std::string&, std::uint64_t& value) { value = values[k++]; });
 }
 
 #else // a build without MPI: one process, always
@@ -315,15 +297,15 @@ double exchange_seconds(const TileExchange&) {
     return 0;
 }
 
+std::vector<std::vector<char>> gather_bytes(const std::vector<char>& mine) {
+    return {mine};
+}
+
 std::vector<RankFigures> gather_figures(const RankFigures& mine) {
     return {mine};
 }
 
-std::vector<std::vector<double>> gather_numbers(const std::vector<double>& mine) {
-    return {mine};
-}
-
-void sum_over_ranks(std::vector<std::uint64_t>&) {}
+void sum_over_ranks(FrameCounters&) {}
 
 #endif
 

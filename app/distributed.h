@@ -6,6 +6,8 @@
 // nothing here is called but the checks.
 #pragma once
 
+#include "app/rank_records.h"
+
 #include "trace/stopwatch.h"
 #include "trace/tiles.h"
 
@@ -45,22 +47,28 @@ int guarded_on_ranks(const std::function<int()>& body);
 std::unique_ptr<TileExchange> make_exchange(int tiles);
 double exchange_seconds(const TileExchange& exchange);
 
-// What each rank did for one frame, gathered on rank 0 (one entry per rank there; empty
-// elsewhere).
-struct RankFigures {
-    double load = 0, prepare = 0; // scene load and World (structures), seconds
-    double gl = 0;                // GL context, shaders, upload, item buffer
-    double trace = 0;             // primary hits and shading, exchanges excluded
-    double exchange = 0;          // pixels exchanged after each pass
-    double tiles = 0;             // tiles traced (first pass)
-    double rays = 0;              // rays cast
-};
+// Every rank's bytes on rank 0 (one vector per rank there; empty elsewhere).
+std::vector<std::vector<char>> gather_bytes(const std::vector<char>& mine);
+
+// Every rank's records on rank 0 (app/rank_records.h: each packed and read back by name), one
+// vector per rank there; empty elsewhere.
+template <Record R> std::vector<std::vector<R>> gather_records(const std::vector<R>& mine) {
+    std::vector<char> bytes;
+    for (const R& record : mine) pack(record, bytes);
+    std::vector<std::vector<R>> all;
+    for (const std::vector<char>& rank_bytes : gather_bytes(bytes)) {
+        std::vector<R>& records = all.emplace_back();
+        const char* at = rank_bytes.data();
+        const char* end = at + rank_bytes.size();
+        while (at < end) unpack(records.emplace_back(), at, end);
+    }
+    return all;
+}
+
+// Each rank's figures for one frame, on rank 0 (one entry per rank there; empty elsewhere).
 std::vector<RankFigures> gather_figures(const RankFigures& mine);
 
-// Every rank's numbers on rank 0 (one vector per rank there; empty elsewhere).
-std::vector<std::vector<double>> gather_numbers(const std::vector<double>& mine);
-
-// Sums over ranks, on every rank.
-void sum_over_ranks(std::vector<std::uint64_t>& values);
+// Sums the frame's counters over ranks, field by field, on every rank.
+void sum_over_ranks(FrameCounters& counters);
 
 } // namespace glint

@@ -165,12 +165,13 @@ namespace {
 // Bytes one frame of width × height uses at its peak, roughly.
 std::uint64_t frame_memory_bytes(int width, int height, Mode mode) {
     // Per pixel, from what a frame holds: primary hits (20 B with their barycentrics), the ids
-    // and cut-off weights (8 B), the 8-bit image (3 B) and its PNG encoding (~3 B); hybrid adds
-    // the read-back ids and depths (8 B) and the GL side: llvmpipe's id and depth attachments
-    // and the pixel-pack buffer. Peak resident memory measured at 4000×3000 minus that at 8×6
-    // (docs/SCENES.md, "Limits"): 31 B a pixel in ray mode, 39 B in hybrid mode; the margin
-    // above covers allocator slack.
-    const std::uint64_t per_pixel = mode == Mode::hybrid ? 64 : 40;
+    // and cut-off weights (8 B), the float image (12 B; 24 B with a sample grid's clamped mean)
+    // and the PNG's bytes (3 B) and their encoding (~3 B); hybrid adds the read-back ids and
+    // depths (8 B) and the GL side: llvmpipe's id and depth attachments and the pixel-pack
+    // buffer. Peak resident memory measured at 4000×3000 minus that at 8×6 (docs/SCENES.md,
+    // "Limits"), before the float image: 31 B a pixel in ray mode, 39 B in hybrid mode; the 12 B
+    // it adds are added to each, and the margin above covers allocator slack and the AOVs.
+    const std::uint64_t per_pixel = mode == Mode::hybrid ? 76 : 52;
     return static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) * per_pixel;
 }
 

@@ -1,7 +1,7 @@
 // The frame's phase times as JSON, as render's --stats and compare's --json both write them.
 #pragma once
 
-#include "trace/precision.h"
+#include "trace/render_result.h"
 
 #include <nlohmann/json.hpp>
 

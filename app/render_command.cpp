@@ -5,6 +5,7 @@
 #include "app/progress.h"
 
 #include "trace/cutoff.h"
+#include "trace/exr.h"
 #include "trace/image.h"
 #include "trace/stopwatch.h"
 
@@ -27,6 +28,7 @@ struct RenderArgs {
     std::string output;
     std::string stats;
     std::string aa_map;
+    std::vector<std::string> aovs;
 };
 
 // What a render needs once its input has been checked.
@@ -34,15 +36,28 @@ struct RenderJob {
     fs::path scene_path;
     fs::path output;
     Scene scene;
+    std::vector<Aov> aovs; // EXR only
 };
 
 // Every check on the input, before anything is rendered or written. On MPI ranks only rank 0
 // writes, so only rank 0 checks where it writes; every rank reads the scene.
 RenderJob prepare(const RenderArgs& args) {
-    RenderJob job{args.scene.scene_path(), args.output, {}};
+    RenderJob job{args.scene.scene_path(), args.output, {}, {}};
     if (job.output.empty()) job.output = fs::path("out") / job.scene_path.stem().concat(".png");
-    if (job.output.extension() != ".png")
-        throw UsageError("-o " + job.output.string() + ": glint writes PNG files (.png)");
+    const fs::path format = job.output.extension();
+    if (format != ".png" && format != ".exr")
+        throw UsageError("-o " + job.output.string() +
+                         ": glint writes PNG (.png) and OpenEXR (.exr) files");
+    for (const std::string& name : args.aovs) {
+        const std::optional<Aov> aov = from_name<Aov>(name);
+        if (!aov)
+            throw UsageError("--aov " + name + ": not an AOV (depth, normal, id, cutoff)");
+        if (format != ".exr")
+            throw UsageError("--aov " + name + ": AOVs are channels of an OpenEXR file; give -o "
+                             "FILE.exr");
+        if (std::find(job.aovs.begin(), job.aovs.end(), *aov) == job.aovs.end())
+            job.aovs.push_back(*aov);
+    }
     if (!args.aa_map.empty() && fs::path(args.aa_map).extension() != ".png")
         throw UsageError("--aa-map " + args.aa_map + ": glint writes PNG files (.png)");
     if (rank() == 0) {
@@ -188,26 +203,36 @@ void print_report(const RenderReport& r) {
 // Where adaptive antialiasing took the grid: those pixels as rendered, the rest at a quarter of
 // their brightness.
 Image refinement_map(const RenderResult& result) {
-    Image map = result.image;
+    Image map = result.bytes();
     for (std::size_t i = 0; i < result.refined.size(); ++i)
         if (!result.refined[i])
             for (int c = 0; c < 3; ++c) map.rgb[3 * i + c] /= 4;
     return map;
 }
 
+bool wants(const std::vector<Aov>& aovs, Aov aov) {
+    return std::find(aovs.begin(), aovs.end(), aov) != aovs.end();
+}
+
+// The frame as the output's format: the PNG's bytes, or the EXR's float image with its AOVs.
+void write_image(const RenderJob& job, const RenderResult& result) {
+    if (job.output.extension() == ".png") return write_png(job.output, result.bytes());
+    const std::vector<float> cutoff =
+        wants(job.aovs, Aov::cutoff) ? cutoff_radiance(job.scene, result) : std::vector<float>();
+    ExrLayers layers{&result.radiance};
+    if (wants(job.aovs, Aov::depth)) layers.depth = &result.aovs.depth;
+    if (wants(job.aovs, Aov::normal)) layers.normal = &result.aovs.normal;
+    if (wants(job.aovs, Aov::id)) layers.id = &result.aovs.id;
+    if (wants(job.aovs, Aov::cutoff)) layers.cutoff = &cutoff;
+    write_exr(job.output, layers);
+}
+
 // Several ranks: every rank's figures on rank 0, and the frame's counters summed over ranks
 // (each rank counted its own tiles' rays and resolves). Prints the per-rank table.
 void combine_ranks(Frame& frame, const RankFigures& mine, int threads) {
-    RayCounts& rays = frame.result.rays;
-    PrimaryStats& p = frame.primary_stats;
-    std::vector<std::uint64_t> sums = {
-        rays.primary, rays.shadow, rays.reflection, rays.transmission, p.exact_intersections,
-        p.fallbacks,  p.corrected, p.edges,         p.checked,         p.tests,
-        p.traced};
-    sum_over_ranks(sums);
-    rays = {sums[0], sums[1], sums[2], sums[3]};
-    p.exact_intersections = sums[4], p.fallbacks = sums[5], p.corrected = sums[6];
-    p.edges = sums[7], p.checked = sums[8], p.tests = sums[9], p.traced = sums[10];
+    FrameCounters counters{frame.result.rays, frame.primary_stats};
+    sum_over_ranks(counters);
+    frame.result.rays = counters.rays, frame.primary_stats = counters.primary;
     const std::vector<RankFigures> all = gather_figures(mine);
     if (rank() != 0) return;
     std::printf("ranks: %d × %d threads, tiles claimed as ranks ask, pixels exchanged after each "
@@ -216,9 +241,9 @@ void combine_ranks(Frame& frame, const RankFigures& mine, int threads) {
     for (std::size_t r = 0; r < all.size(); ++r) {
         const RankFigures& f = all[r];
         std::printf(
-            "  rank %zu: %.0f tiles (all passes), %.2f M rays; load %.3f s, structures %.3f s, "
+            "  rank %zu: %llu tiles (all passes), %.2f M rays; load %.3f s, structures %.3f s, "
             "GL %.3f s, trace %.3f s, exchange %.3f s\n",
-            r, f.tiles, f.rays / 1e6, f.load, f.prepare, f.gl, f.trace, f.exchange);
+            r, static_cast<unsigned long long>(f.tiles), static_cast<double>(f.rays) / 1e6, f.load, f.prepare, f.gl, f.trace, f.exchange);
     }
 }
 
@@ -238,6 +263,8 @@ int run_render(const RenderArgs& args) {
     const std::unique_ptr<TileExchange> exchange = on_ranks() ? make_exchange(tiles) : nullptr;
     FrameSettings settings = args.frame.settings();
     settings.exchange = exchange.get();
+    settings.aovs = wants(job.aovs, Aov::depth) || wants(job.aovs, Aov::normal) ||
+                    wants(job.aovs, Aov::id);
     std::atomic<int> tiles_done{0};
     Frame frame;
     {
@@ -259,13 +286,13 @@ int run_render(const RenderArgs& args) {
         const double exchanged = exchange_seconds(*exchange);
         combine_ranks(frame,
                       {load_seconds, prepare_seconds, gl, frame_seconds - gl - exchanged, exchanged,
-                       static_cast<double>(exchange->tiles_taken()),
-                       static_cast<double>(frame.result.rays.total())},
+                       static_cast<std::uint64_t>(exchange->tiles_taken()),
+                       frame.result.rays.total()},
                       threads);
         if (rank() != 0) return 0;
     }
     phase.restart();
-    write_png(job.output, frame.result.image);
+    write_image(job, frame.result);
     const double write_seconds = phase.seconds();
     const double total_seconds = total.seconds();
     const RenderReport report{
@@ -283,7 +310,13 @@ Command add_render_command(CLI::App& app) {
     auto args = std::make_shared<RenderArgs>();
     CLI::App* cmd = app.add_subcommand("render", "Render a scene to a PNG file");
     args->scene.add_to(*cmd);
-    cmd->add_option("-o,--output", args->output, "Output PNG; default out/<scene name>.png");
+    cmd->add_option("-o,--output", args->output,
+                    "Output image: .png (8-bit, clamped) or .exr (linear float, unclamped); "
+                    "default out/<scene name>.png");
+    cmd->add_option("--aov", args->aovs,
+                    "EXR only: add channels for each pixel centre's primary hit, comma-separated: "
+                    "depth (Z), normal (N.X, N.Y, N.Z), id, cutoff")
+        ->delimiter(',');
     args->frame.add_to(*cmd, true);
     cmd->add_option("--stats", args->stats,
                     "Also write timings per phase and ray counts as JSON here");

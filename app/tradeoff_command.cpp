@@ -4,6 +4,7 @@
 // no weight cut-off. Writes a CSV (a row per run), a plot per scene of time against error with
 // the Pareto front (gnuplot, SVG and PNG) and a markdown summary (docs/TRADEOFF.md).
 #include "app/distributed.h"
+#include "app/rank_records.h"
 #include "app/options.h"
 
 #include "trace/cutoff.h"
@@ -185,13 +186,15 @@ struct Run {
 };
 
 // Pixel replication up to width × height (nearest neighbour: what a preview shows).
-Image enlarge(const Image& small, int width, int height) {
-    if (small.width == width && small.height == height) return small;
-    Image out(width, height);
+FloatImage enlarge(const FloatImage& small, int width, int height) {
+    if (small.empty() || (small.width == width && small.height == height)) return small;
+    FloatImage out(width, height);
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
-            const std::uint8_t* p = small.pixel(x * small.width / width, y * small.height / height);
-            std::copy(p, p + 3, out.pixel(x, y));
+            const float* p = small.pixel(static_cast<std::size_t>(y * small.height / height) *
+                                             small.width +
+                                         x * small.width / width);
+            std::copy(p, p + 3, out.pixel(static_cast<std::size_t>(y) * width + x));
         }
     return out;
 }
@@ -211,8 +214,9 @@ Run render_once(const Scene& scene, const Setting& s, const TradeoffArgs& args,
     settings.threads = args.threads;
     run.frame = render_frame(copy, s.accel, settings, nullptr, geometry);
     run.bound = cutoff_bound(copy, run.frame.result);
-    Image& image = run.frame.result.image;
-    image = enlarge(image, scene.camera.width, scene.camera.height);
+    RenderResult& result = run.frame.result;
+    result.radiance = enlarge(result.radiance, scene.camera.width, scene.camera.height);
+    result.clamped = enlarge(result.clamped, scene.camera.width, scene.camera.height);
     return run;
 }
 
@@ -340,7 +344,8 @@ void write_csv(const std::vector<SceneResult>& results, const fs::path& path) {
            "seconds_context,seconds_compile,seconds_upload,seconds_raster,seconds_primary,"
            "seconds_shading,psnr_db,max_abs_error_255,fraction_over_1_255,id_agreement,"
            "rays_primary,rays_shadow,rays_reflection,rays_transmission,cutoff_bound_255,cutoff_"
-           "bound_held,pareto,samples,antialias,aa_threshold,refined_pixels,reference\n";
+           "bound_held,pareto,samples,antialias,aa_threshold,refined_pixels,reference,"
+           "fraction_over_2_255,rmse_radiance,max_error_radiance\n";
     for (const SceneResult& sr : results) {
         const std::vector<std::size_t> front = pareto_front(sr.runs);
         for (std::size_t i = 0; i < sr.runs.size(); ++i) {
@@ -367,14 +372,15 @@ void write_csv(const std::vector<SceneResult>& results, const fs::path& path) {
                 << (std::find(front.begin(), front.end(), i) != front.end() ? "yes" : "") << ','
                 << s.samples << ',' << name_of(s.antialias) << ',' << s.aa_threshold << ','
                 << r.refined.value_or(0) << ',' << (s.against_grid ? "uniform 8x8" : "exact")
-                << '\n';
+                << ',' << r.diff.fraction_over_two << ',' << format("%.6g", r.diff.rmse) << ','
+                << format("%.6g", r.diff.max_radiance_error) << '\n';
         }
     }
     write_file_atomically(path, csv.str());
 }
 
-// The summary, one document written top to bottom (65 lines: its parts would each need the same
-// five arguments, and the order of the document is the order of the code).
+// The summary, one document written top to bottom in one body: its parts would each need the
+// same five arguments, and the order of the document is the order of the code.
 std::string markdown(const std::vector<SceneResult>& results, const TradeoffArgs& args,
                      const fs::path& plots, const std::string& gl_renderer, double seconds) {
     std::ostringstream md;
@@ -504,62 +510,33 @@ std::vector<SceneResult> prepare(const TradeoffArgs& args) {
     return results;
 }
 
-// A measured run's figures as numbers, for the rank that writes the CSV (MPI ranks spread a sweep):
+// A measured run's figures, for the rank that writes the CSV (MPI ranks spread a sweep):
 // everything the CSV, the plots and the summary read but the image and the setting, which that
 // rank knows already.
-constexpr std::size_t kRunFields = 27;
-
-void append_figures(const Run& r, std::vector<double>& out) {
-    const PhaseTimes& t = r.frame.times;
-    const RayCounts& rays = r.frame.result.rays;
-    const auto u = [](std::uint64_t v) { return static_cast<double>(v); };
-    const double figures[kRunFields] = {t.prepare,
-                                        t.context,
-                                        t.compile,
-                                        t.upload,
-                                        t.raster,
-                                        t.primary,
-                                        t.shading,
-                                        u(rays.primary),
-                                        u(rays.shadow),
-                                        u(rays.reflection),
-                                        u(rays.transmission),
-                                        r.diff.psnr_db,
-                                        static_cast<double>(r.diff.max_abs_error),
-                                        r.diff.fraction_over_one,
-                                        u(r.diff.pixels_over_one),
-                                        r.diff.fraction_over_two,
-                                        r.agreement ? 1.0 : 0.0,
-                                        r.agreement.value_or(0),
-                                        static_cast<double>(r.bound.max),
-                                        u(r.bound.pixels_over_one),
-                                        r.bound.largest_omitted_weight,
-                                        r.bound_held ? (*r.bound_held ? 1.0 : 0.0) : -1.0,
-                                        r.refined ? 1.0 : 0.0,
-                                        u(r.refined.value_or(0)),
-                                        u(r.pixels),
-                                        0,
-                                        0};
-    out.insert(out.end(), figures, figures + kRunFields);
+RunFigures figures_of(const Run& r) {
+    return {r.frame.times,           r.frame.result.rays,
+            r.diff,                  r.agreement,
+            r.bound.max,             r.bound.pixels_over_one,
+            r.bound.largest_omitted_weight, r.bound_held,
+            r.refined,               r.pixels};
 }
 
-Run run_from_figures(const double* f) {
+Run run_from_figures(const RunFigures& f) {
     Run r;
-    const auto u = [](double v) { return static_cast<std::uint64_t>(v); };
-    r.frame.times = {f[0], f[1], f[2], f[3], f[4], f[5], f[6]};
-    r.frame.result.rays = {u(f[7]), u(f[8]), u(f[9]), u(f[10])};
-    r.diff = {f[11], static_cast<int>(f[12]), f[13], u(f[14]), f[15]};
-    if (f[16] != 0) r.agreement = f[17];
-    r.bound.max = static_cast<int>(f[18]), r.bound.pixels_over_one = u(f[19]);
-    r.bound.largest_omitted_weight = f[20];
-    if (f[21] >= 0) r.bound_held = f[21] != 0;
-    if (f[22] != 0) r.refined = u(f[23]);
-    r.pixels = u(f[24]);
+    r.frame.times = f.times;
+    r.frame.result.rays = f.rays;
+    r.diff = f.diff;
+    r.agreement = f.agreement;
+    r.bound.max = f.bound_max, r.bound.pixels_over_one = f.bound_pixels_over_one;
+    r.bound.largest_omitted_weight = f.largest_omitted_weight;
+    r.bound_held = f.bound_held;
+    r.refined = f.refined;
+    r.pixels = f.pixels;
     return r;
 }
 
 // The command's steps in their order: checks, then per scene the exact image and the sweep, then
-// CSV, plots and summary (about 60 lines, kept whole so that the order reads as it runs).
+// CSV, plots and summary, kept whole so that the order reads as it runs.
 int run_tradeoff(const TradeoffArgs& args) {
     const Stopwatch watch;
     std::vector<SceneResult> results;
@@ -593,7 +570,7 @@ int run_tradeoff(const TradeoffArgs& args) {
         sr.reference_bound = cutoff_bound(deep, reference.result);
         deep_ray.precision = Precision::f32;
         const Image untruncated_float =
-            render_frame(deep, std::nullopt, deep_ray, nullptr, geometry).result.image;
+            render_frame(deep, std::nullopt, deep_ray, nullptr, geometry).result.bytes();
 
         // The antialiasing knobs' reference: the default setting's uniform 8×8 image, ray traced.
         Setting grid_setting;
@@ -622,26 +599,26 @@ int run_tradeoff(const TradeoffArgs& args) {
             std::printf("%s (%dx%d): %zu settings%s\n", sr.name.c_str(), scene.camera.width,
                         scene.camera.height, sr.runs.size(),
                         on_ranks() ? (" over " + std::to_string(ranks()) + " ranks").c_str() : "");
-        std::vector<double> figures;
+        std::vector<RunFigures> figures;
         for (std::size_t k = static_cast<std::size_t>(rank()); k < sr.runs.size();
              k += static_cast<std::size_t>(ranks())) {
             const Setting& setting = sr.runs[k].setting;
             Run run = measure(scene, setting, args, geometry);
             const RenderResult& result = run.frame.result;
-            run.diff = compare_images(setting.against_grid ? grid.frame.result.image
-                                                           : reference.result.image,
-                                      result.image);
+            run.diff = compare_results(
+                setting.against_grid ? grid.frame.result : reference.result, result);
             if (setting.divisor == 1 && !setting.against_grid)
                 run.agreement = id_agreement(reference.result.ids, result.ids);
             if (setting.frame.precision == Precision::f32 && setting.frame.mode == Mode::ray &&
                 setting.divisor == 1)
-                run.bound_held = cutoff_violations(run.bound, result.image, untruncated_float) == 0;
+                run.bound_held =
+                    cutoff_violations(run.bound, result.bytes(), untruncated_float) == 0;
             if (!result.refined.empty())
                 run.refined = static_cast<std::uint64_t>(
                     std::count(result.refined.begin(), result.refined.end(), 1));
             run.pixels = result.refined.size();
             if (!run.frame.gl_renderer.empty()) gl_renderer = run.frame.gl_renderer;
-            append_figures(run, figures);
+            figures.push_back(figures_of(run));
             run.knobs = sr.runs[k].knobs, run.label = sr.runs[k].label;
             if (!on_ranks())
                 std::printf("  %-44s %8.4f s  PSNR %6s dB  max error %3d/255\n", run.label.c_str(),
@@ -651,13 +628,13 @@ int run_tradeoff(const TradeoffArgs& args) {
             sr.runs[k] = std::move(run);
         }
         if (on_ranks()) {
-            const std::vector<std::vector<double>> all = gather_numbers(figures);
+            const std::vector<std::vector<RunFigures>> all = gather_records(figures);
             if (rank() != 0) continue;
             for (int r = 1; r < ranks(); ++r) {
-                const double* f = all[static_cast<std::size_t>(r)].data();
+                const RunFigures* f = all[static_cast<std::size_t>(r)].data();
                 for (std::size_t k = static_cast<std::size_t>(r); k < sr.runs.size();
-                     k += static_cast<std::size_t>(ranks()), f += kRunFields) {
-                    Run run = run_from_figures(f);
+                     k += static_cast<std::size_t>(ranks()), ++f) {
+                    Run run = run_from_figures(*f);
                     run.knobs = sr.runs[k].knobs, run.label = sr.runs[k].label;
                     run.setting = sr.runs[k].setting;
                     sr.runs[k] = std::move(run);

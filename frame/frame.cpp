@@ -53,7 +53,8 @@ Frame render_frame(const World& world, const FrameSettings& settings,
     Frame frame;
     draw_item_buffers(world, settings, frame);
     frame.result = trace_frame(world, primary_source(frame, settings.resolve), frame.primary_stats,
-                               {settings.threads, tiles_done, settings.exchange}, frame.times);
+                               {settings.threads, tiles_done, settings.exchange}, frame.times,
+                               settings.aovs);
     return frame;
 }
 

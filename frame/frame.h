@@ -34,6 +34,8 @@ struct FrameSettings {
     // One process of several rendering this frame (app/distributed.h): it traces its own tiles
     // and exchanges pixels with the others after each pass. Null: the whole frame here.
     TileExchange* exchange = nullptr;
+    // Keep each pixel centre's primary hit (RenderResult::aovs: depth, normal, id) for an EXR.
+    bool aovs = false;
 };
 
 // The one result of a render, in either mode and either precision.

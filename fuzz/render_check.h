@@ -41,7 +41,7 @@ int check_loader(const std::uint8_t* data, std::size_t size, const std::string& 
         Image first;
         for (const std::string_view accel : EnumNames<AccelKind>::names) {
             const World world(scene, from_name<AccelKind>(accel));
-            const Image image = render(world).image;
+            const Image image = render(world).bytes();
             if (accel == EnumNames<AccelKind>::names[0]) {
                 first = image;
             } else if (image.rgb != first.rgb) {

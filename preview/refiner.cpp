@@ -14,7 +14,6 @@ RefineJob::RefineJob(std::shared_ptr<const World> world, std::shared_ptr<const I
       compare_with_ray_(compare_with_ray && ids_) {
     const int width = world_->camera().width(), height = world_->camera().height();
     final_ = normals_ = difference_ = reflections_ = Image(width, height);
-    tiles_x_ = (width + kTileSize - 1) / kTileSize;
     order_.resize(static_cast<std::size_t>(glint::tile_count(width, height)));
     std::iota(order_.begin(), order_.end(), 0);
     const auto distance = [&](int index) {
@@ -51,8 +50,7 @@ const Image& RefineJob::traced(View view, int passes) const {
 }
 
 TileRect RefineJob::tile(int index) const {
-    const int x0 = (index % tiles_x_) * kTileSize, y0 = (index / tiles_x_) * kTileSize;
-    return {x0, y0, std::min(x0 + kTileSize, width()), std::min(y0 + kTileSize, height())};
+    return tile_rect(width(), height(), index);
 }
 
 void RefineJob::work(const std::atomic<bool>& cancel) {

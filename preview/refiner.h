@@ -21,10 +21,6 @@
 
 namespace glint {
 
-struct TileRect {
-    int x0, y0, x1, y1;
-};
-
 class RefineJob {
   public:
     // `ids`: the item buffer for hybrid resolve; null traces every primary ray (ray mode).
@@ -83,7 +79,6 @@ class RefineJob {
     Image final_, normals_, difference_, reflections_;
     Image sampled_; // the final view after the second pass
     Image spread_;  // and after adaptive's spreading (the third)
-    int tiles_x_;
     std::vector<int> order_; // tile indices, nearest the image centre first
     int passes_ = 1;
     std::unique_ptr<std::atomic<int>[]> done_;

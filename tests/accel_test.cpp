@@ -174,14 +174,14 @@ TEST_P(AccelTest, PacketsAgreeExactlyWithTheListRayByRay) {
 TEST_P(AccelTest, RendersAreByteIdenticalToTheList) {
     Scene scene = load_scene(GLINT_SOURCE_DIR "/scenes/default.json");
     scene.camera.width = 120, scene.camera.height = 90;
-    EXPECT_EQ(render(World(scene, GetParam())).image.rgb,
-              render(World(scene, AccelKind::list)).image.rgb);
+    EXPECT_EQ(render(World(scene, GetParam())).bytes().rgb,
+              render(World(scene, AccelKind::list)).bytes().rgb);
     Scene crowd = random_scene(7, 300);
     crowd.camera.width = 96, crowd.camera.height = 72;
     crowd.lights.push_back({{5, 8, 6}, Vec3(1.0f)});
     crowd.materials[0].reflectivity = 0.5f;
-    EXPECT_EQ(render(World(crowd, GetParam())).image.rgb,
-              render(World(crowd, AccelKind::list)).image.rgb);
+    EXPECT_EQ(render(World(crowd, GetParam())).bytes().rgb,
+              render(World(crowd, AccelKind::list)).bytes().rgb);
 }
 
 TEST_P(AccelTest, RendersAreByteIdenticalToTheListAtTheEdgeOfTheCoordinateRange) {
@@ -202,7 +202,7 @@ TEST_P(AccelTest, RendersAreByteIdenticalToTheListAtTheEdgeOfTheCoordinateRange)
                     "far.json");
     const RenderResult list = render(World(scene, AccelKind::list));
     EXPECT_GT(list.rays.shadow, list.rays.primary / 4) << "the scene should fill the image";
-    EXPECT_EQ(render(World(scene, GetParam())).image.rgb, list.image.rgb);
+    EXPECT_EQ(render(World(scene, GetParam())).bytes().rgb, list.bytes().rgb);
 }
 
 TEST_P(AccelTest, RendersAreByteIdenticalToTheListForAVeryElongatedScene) {
@@ -216,8 +216,8 @@ TEST_P(AccelTest, RendersAreByteIdenticalToTheListForAVeryElongatedScene) {
         {"shape": "box", "transform": [{"scale": [0.5, 0.25, 0.5]}, {"translate": [0, 0.25, -0.9]}]}]})",
                               "elongated.json");
     scene.camera.width = 48, scene.camera.height = 36;
-    EXPECT_EQ(render(World(scene, GetParam())).image.rgb,
-              render(World(scene, AccelKind::list)).image.rgb);
+    EXPECT_EQ(render(World(scene, GetParam())).bytes().rgb,
+              render(World(scene, AccelKind::list)).bytes().rgb);
 }
 
 TEST_P(AccelTest, RendersAreByteIdenticalToTheListForAnObjectThinnerThanFloatResolves) {
@@ -235,8 +235,8 @@ TEST_P(AccelTest, RendersAreByteIdenticalToTheListForAnObjectThinnerThanFloatRes
         {"shape": "plane", "transform": [{"translate": [0, -2.5, 0]}]}]})",
                               "flat-cone.json");
     scene.camera.width = 48, scene.camera.height = 36;
-    EXPECT_EQ(render(World(scene, GetParam())).image.rgb,
-              render(World(scene, AccelKind::list)).image.rgb);
+    EXPECT_EQ(render(World(scene, GetParam())).bytes().rgb,
+              render(World(scene, AccelKind::list)).bytes().rgb);
 }
 
 // A fuzz_nff seed rendered with `accel` and with the list, by default as the fuzzer renders it
@@ -244,8 +244,8 @@ TEST_P(AccelTest, RendersAreByteIdenticalToTheListForAnObjectThinnerThanFloatRes
 void expect_list_image(const char* seed, AccelKind accel, int width = 12, int height = 9) {
     Scene scene = load_scene(std::string(GLINT_SOURCE_DIR "/fuzz/seeds/nff/") + seed);
     scene.camera.width = width, scene.camera.height = height;
-    EXPECT_EQ(render(World(scene, accel)).image.rgb,
-              render(World(scene, AccelKind::list)).image.rgb);
+    EXPECT_EQ(render(World(scene, accel)).bytes().rgb,
+              render(World(scene, AccelKind::list)).bytes().rgb);
 }
 
 TEST_P(AccelTest, RendersAreByteIdenticalToTheListForARayLongerThanFloatResolvesItsLeaves) {

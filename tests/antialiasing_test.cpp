@@ -52,7 +52,8 @@ TEST(Antialiasing, AHalfCoveredPixelIsTheMeanOfItsClampedSamples) {
     scene.camera.fov_y = 90;
     scene.render.samples = 2;
     const RenderResult result = render(World(scene));
-    const std::uint8_t* p = result.image.pixel(0, 0);
+    const Image bytes = result.bytes();
+    const std::uint8_t* p = bytes.pixel(0, 0);
     EXPECT_EQ(p[0], 128);
     EXPECT_EQ(p[1], 64);
     EXPECT_EQ(p[2], 102);
@@ -64,10 +65,10 @@ TEST(Antialiasing, AHalfCoveredPixelIsTheMeanOfItsClampedSamples) {
 TEST(Antialiasing, OneSampleIsThePixelCentresImage) {
     const World world(default_scene(64, 48, 1));
     const RenderResult centres = shade_image(world, primary_hits_by_ray(world));
-    EXPECT_EQ(render(world).image.rgb, centres.image.rgb);
+    EXPECT_EQ(render(world).bytes().rgb, centres.bytes().rgb);
     const World adaptive(default_scene(64, 48, 1, Antialias::adaptive));
     const RenderResult one = render(adaptive);
-    EXPECT_EQ(one.image.rgb, centres.image.rgb);
+    EXPECT_EQ(one.bytes().rgb, centres.bytes().rgb);
     EXPECT_TRUE(one.refined.empty());
 }
 
@@ -79,7 +80,7 @@ TEST(Antialiasing, OneAndTwoThreadsGiveIdenticalBytesForEveryGrid) {
             const World world(default_scene(w, h, n, aa));
             const RenderResult one = render(world, {1, nullptr});
             const RenderResult two = render(world, {2, nullptr});
-            EXPECT_EQ(one.image.rgb, two.image.rgb) << name_of(aa) << " " << n;
+            EXPECT_EQ(one.bytes().rgb, two.bytes().rgb) << name_of(aa) << " " << n;
             EXPECT_EQ(one.rays.total(), two.rays.total()) << name_of(aa) << " " << n;
             EXPECT_EQ(one.refined, two.refined) << name_of(aa) << " " << n;
         }
@@ -100,13 +101,15 @@ TEST(Antialiasing, AdaptivePixelsAreTheUniformGridsWhereRefinedAndTheCentresElse
             const RenderResult adaptive = render(World(scene));
             ASSERT_EQ(adaptive.refined.size(), 80u * 60u);
             std::size_t refined = 0;
+            const Image uniform_bytes = uniform.bytes(), centre_bytes = centres.bytes();
+            const Image adaptive_bytes = adaptive.bytes();
             for (int y = 0; y < 60; ++y) {
                 for (int x = 0; x < 80; ++x) {
                     const bool r = adaptive.refined[std::size_t(y) * 80 + x];
                     refined += r;
-                    const Image& expected = r ? uniform.image : centres.image;
+                    const Image& expected = r ? uniform_bytes : centre_bytes;
                     ASSERT_TRUE(std::equal(expected.pixel(x, y), expected.pixel(x, y) + 3,
-                                           adaptive.image.pixel(x, y)))
+                                           adaptive_bytes.pixel(x, y)))
                         << name << " " << n << ": " << x << ", " << y;
                 }
             }

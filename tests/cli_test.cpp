@@ -326,7 +326,7 @@ TEST(Cli, ExplainRefusesAPixelOrSampleOutsideTheImageAndItsGrid) {
     }
 }
 
-TEST(Cli, OutputIntoAMissingDirectoryOrNotPngIsAnError) {
+TEST(Cli, OutputIntoAMissingDirectoryOrNotPngOrExrIsAnError) {
     const fs::path dir = fresh_dir();
     Outcome r = glint(dir, "render -o missing/dir/a.png");
     EXPECT_EQ(r.exit_code, 2);
@@ -335,7 +335,31 @@ TEST(Cli, OutputIntoAMissingDirectoryOrNotPngIsAnError) {
         << r.err;
     r = glint(dir, "render -o a.jpg");
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_NE(r.err.find("glint writes PNG files"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("glint writes PNG (.png) and OpenEXR (.exr) files"), std::string::npos)
+        << r.err;
+}
+
+// --aov adds channels to an EXR: with a PNG, or a name that is no AOV, it is bad input (exit 2)
+// and nothing is written; with an EXR, the file is written and the report names it.
+TEST(Cli, AovsGoIntoAnExrAndAreRefusedForAPngOrAnUnknownName) {
+    const fs::path dir = fresh_dir();
+    Outcome r = glint(dir, "render --size 16x12 -o a.png --aov depth");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("--aov depth: AOVs are channels of an OpenEXR file"), std::string::npos)
+        << r.err;
+    EXPECT_FALSE(fs::exists(dir / "a.png"));
+    r = glint(dir, "render --size 16x12 -o a.exr --aov depth,albedo");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("--aov albedo: not an AOV (depth, normal, id, cutoff)"),
+              std::string::npos)
+        << r.err;
+    EXPECT_FALSE(fs::exists(dir / "a.exr"));
+    r = glint(dir, "render --size 16x12 --mode ray -o a.exr --aov depth,normal,id,cutoff");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("glint: wrote a.exr"), std::string::npos) << r.out;
+    const std::string exr = slurp(dir / "a.exr");
+    ASSERT_GE(exr.size(), 4u);
+    EXPECT_EQ(exr.substr(0, 4), std::string("\x76\x2f\x31\x01")); // OpenEXR's magic number
 }
 
 TEST(Cli, AnUnwritablePlaceIsRefusedBeforeRendering) {

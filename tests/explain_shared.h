@@ -52,13 +52,14 @@ inline int expect_explanations_match(const Scene& scene, const World& world,
                                      const std::string& what) {
     const int width = world.camera().width(), n = world.settings().samples;
     int secondary = 0;
+    const Image bytes = frame.bytes();
     for (const auto& [x, y] : pixels) {
         const std::size_t i = static_cast<std::size_t>(y) * width + x;
         const bool refined = !frame.refined.empty() && frame.refined[i];
         const PixelExplanation e = explain_pixel(world, source, x, y, n / 2, n / 2, refined);
         const std::string at =
             what + " pixel (" + std::to_string(x) + ", " + std::to_string(y) + ")";
-        const std::uint8_t* rendered = frame.image.pixel(x, y);
+        const std::uint8_t* rendered = bytes.pixel(x, y);
         EXPECT_EQ(e.pixel_bytes,
                   (std::array<std::uint8_t, 3>{rendered[0], rendered[1], rendered[2]}))
             << at;

@@ -57,11 +57,12 @@ TEST(Explain, AUniformGridsPixelIsItsMeanForAnySample) {
     scene.render.samples = 2, scene.render.antialias = Antialias::uniform;
     const World world(scene);
     const Frame frame = render_frame(world, ray_mode());
+    const Image bytes = frame.result.bytes();
     for (const auto& [x, y] : {std::pair{10, 10}, {32, 24}, {63, 47}}) {
         for (int s = 0; s < 4; ++s) {
             const PixelExplanation e = explain_pixel(world, {}, x, y, s % 2, s / 2);
             EXPECT_TRUE(e.averaged);
-            const std::uint8_t* rendered = frame.result.image.pixel(x, y);
+            const std::uint8_t* rendered = bytes.pixel(x, y);
             EXPECT_EQ(e.pixel_bytes,
                       (std::array<std::uint8_t, 3>{rendered[0], rendered[1], rendered[2]}));
         }

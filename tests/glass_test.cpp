@@ -105,16 +105,16 @@ std::string box_at(const char* material, double y) {
 
 TEST(Glass, ShadowsPassThroughOneAndTwoTransmissiveObjects) {
     const RenderResult open = floor_under("");
-    EXPECT_EQ(open.image.rgb[0], std::lround(255 * 0.8));
+    EXPECT_EQ(open.bytes().rgb[0], std::lround(255 * 0.8));
     EXPECT_EQ(open.rays.shadow, 1u);
     const RenderResult one = floor_under(box_at("half", 4));
-    EXPECT_EQ(one.image.rgb[0], std::lround(255 * 0.8 * 0.5 * 0.5));
+    EXPECT_EQ(one.bytes().rgb[0], std::lround(255 * 0.8 * 0.5 * 0.5));
     EXPECT_EQ(one.rays.shadow, 3u) << "to the box, through it, on to the light";
     const RenderResult two = floor_under(box_at("half", 4) + box_at("most", 6));
-    EXPECT_EQ(two.image.rgb[0], std::lround(255 * 0.8 * 0.25 * 0.64));
+    EXPECT_EQ(two.bytes().rgb[0], std::lround(255 * 0.8 * 0.25 * 0.64));
     EXPECT_EQ(two.rays.shadow, 5u);
     const RenderResult blocked = floor_under(box_at("half", 4) + box_at("opaque", 6));
-    EXPECT_EQ(blocked.image.rgb[0], 0);
+    EXPECT_EQ(blocked.bytes().rgb[0], 0);
 }
 
 // A 2×2 view straight down on a checkered plane at the origin: the pixel centres land at
@@ -131,7 +131,7 @@ TEST(Checker, CellsFollowTheFloorParityInObjectSpace) {
             "objects": [{"shape": "plane", "material": "c", "transform": )") +
                                             transform + "}]}",
                                         "checker.json");
-        const Image image = render(World(scene)).image;
+        const Image image = render(World(scene)).bytes();
         const auto green = [&](int x, int y) { return image.pixel(x, y)[1] == 255; };
         EXPECT_FALSE(green(0, 0)) << transform;
         EXPECT_TRUE(green(1, 0)) << transform;
@@ -160,7 +160,7 @@ TEST(Glass, ARayTreeCastsAndCutsTheHandCountedRays) {
     EXPECT_EQ(r.rays.transmission, 2u);
     EXPECT_EQ(r.rays.shadow, 0u);
     EXPECT_FLOAT_EQ(r.omitted_weight[0], 0.75f);
-    EXPECT_EQ(r.image.rgb[0], std::lround(255 * 0.15));
+    EXPECT_EQ(r.bytes().rgb[0], std::lround(255 * 0.15));
 }
 
 // A glass sphere and the camera inside a closed mirror box, as deep as glint allows and with no
@@ -186,9 +186,9 @@ TEST(Glass, APixelsRayTreeStaysWithinItsBudget) {
 // Every structure and both primary modes give the same bytes on a glass scene.
 TEST(Glass, EveryStructureRendersTheSameBytes) {
     const Scene scene = testing::shipped("whitted", 96, 72);
-    const Image list = render(World(scene, AccelKind::list)).image;
+    const Image list = render(World(scene, AccelKind::list)).bytes();
     for (const AccelKind kind : all_values<AccelKind>())
-        EXPECT_EQ(render(World(scene, kind)).image.rgb, list.rgb) << name_of(kind);
+        EXPECT_EQ(render(World(scene, kind)).bytes().rgb, list.rgb) << name_of(kind);
 }
 
 } // namespace

@@ -100,7 +100,7 @@ TEST_P(GlTest, ExactResolveIsRightWhereTrustIsWrong) {
     EXPECT_EQ(trust.result.ids[centre], 0u + 1) << "trust should have believed the item buffer";
     EXPECT_EQ(exact.result.ids[centre], 1u + 1);
     EXPECT_GT(exact.primary_stats.corrected, 0u);
-    EXPECT_EQ(exact.result.image.rgb, ray.result.image.rgb);
+    EXPECT_EQ(exact.result.bytes().rgb, ray.result.bytes().rgb);
 }
 
 // A crowd of 1000 small, rotated boxes and spheres (sized so that, without the boundary rule,
@@ -130,7 +130,7 @@ TEST_P(GlTest, ExactResolveReproducesRayModeOnACrowdedScene) {
         settings.mode = Mode::hybrid;
         const Frame hybrid = render_frame(world, settings);
         EXPECT_EQ(id_agreement(ray.result.ids, hybrid.result.ids), 1.0) << name_of(raster);
-        EXPECT_EQ(ray.result.image.rgb, hybrid.result.image.rgb) << name_of(raster);
+        EXPECT_EQ(ray.result.bytes().rgb, hybrid.result.bytes().rgb) << name_of(raster);
         EXPECT_GT(hybrid.primary_stats.edges, 0u);
     }
 }
@@ -162,19 +162,20 @@ TEST_P(GlTest, HybridEqualsRayModeWithSamplesUniformAndAdaptive) {
                         EXPECT_EQ(hybrid.sample_items->ids.width, 96 * n) << label;
                     }
                     EXPECT_EQ(hybrid.items.has_value(), aa == Antialias::adaptive) << label;
-                    EXPECT_EQ(ray.result.image.rgb, hybrid.result.image.rgb) << label;
+                    EXPECT_EQ(ray.result.bytes().rgb, hybrid.result.bytes().rgb) << label;
                     EXPECT_EQ(ray.result.rays.total(), hybrid.result.rays.total()) << label;
                     if (aa == Antialias::uniform) continue;
                     settings.aa_sample_ids = true;
                     const Frame ids_rule = render_frame(world, settings);
                     ASSERT_TRUE(ids_rule.sample_items) << label;
                     EXPECT_EQ(ids_rule.sample_items->ids.width, 96 * n) << label;
+                    const Image ray_bytes = ray.result.bytes();
+                    const Image ids_rule_bytes = ids_rule.result.bytes();
                     for (std::size_t i = 0; i < ray.result.refined.size(); ++i) {
                         ASSERT_LE(ray.result.refined[i], ids_rule.result.refined[i]) << label;
                         if (ray.result.refined[i] == ids_rule.result.refined[i]) {
-                            ASSERT_TRUE(std::equal(&ray.result.image.rgb[3 * i],
-                                                   &ray.result.image.rgb[3 * i + 3],
-                                                   &ids_rule.result.image.rgb[3 * i]))
+                            ASSERT_TRUE(std::equal(&ray_bytes.rgb[3 * i], &ray_bytes.rgb[3 * i + 3],
+                                                   &ids_rule_bytes.rgb[3 * i]))
                                 << label << " pixel " << i;
                         }
                     }
@@ -210,19 +211,20 @@ TEST_P(GlTest, AdaptiveHybridFindsAnObjectThatFallsBetweenPixelCentres) {
         EXPECT_EQ(std::count(ray.result.refined.begin(), ray.result.refined.end(), 1), 0);
         EXPECT_EQ(ray.result.ids, std::vector<std::uint32_t>(16 * 16, 0)) << "a centre saw it";
         settings.mode = Mode::hybrid;
-        EXPECT_EQ(render_frame(world, settings).result.image.rgb, ray.result.image.rgb);
+        EXPECT_EQ(render_frame(world, settings).result.bytes().rgb, ray.result.bytes().rgb);
         settings.aa_sample_ids = true;
         const Frame hybrid = render_frame(world, settings);
         scene.render.antialias = Antialias::uniform;
         const Frame uniform = render_frame(World(scene), settings);
         scene.render.antialias = Antialias::adaptive;
+        const Image hybrid_bytes = hybrid.result.bytes(), uniform_bytes = uniform.result.bytes();
         for (int y = 0; y < 16; ++y) {
             for (int x = 0; x < 16; ++x) {
                 const bool spans = (x == 7 || x == 8) && y >= 2 && y <= 13;
                 const bool ring = x >= 6 && x <= 9 && y >= 1 && y <= 14;
                 EXPECT_EQ(hybrid.result.refined[y * 16 + x], ring ? 1 : 0) << x << ", " << y;
-                const std::uint8_t* p = hybrid.result.image.pixel(x, y);
-                EXPECT_TRUE(std::equal(p, p + 3, uniform.result.image.pixel(x, y)));
+                const std::uint8_t* p = hybrid_bytes.pixel(x, y);
+                EXPECT_TRUE(std::equal(p, p + 3, uniform_bytes.pixel(x, y)));
                 if (spans) {
                     EXPECT_GT(p[0], 40) << "the box is lit: " << x << ", " << y;
                 }
@@ -247,7 +249,7 @@ TEST(GlStability, AScaledOrDistantSceneRendersInHybridModeAsTheOriginalInRayMode
     for (const auto& [s, d] : {std::pair{1e-6, DVec3(0.0)}, std::pair{1e6, DVec3(0.0)},
                                std::pair{1.0, DVec3(1e6, -1e6, 1e6)}}) {
         const Frame hybrid = render_frame(World(testing::moved(scene, s, d)), settings);
-        const ImageDifference diff = compare_images(reference.result.image, hybrid.result.image);
+        const ImageDifference diff = compare_images(reference.result.bytes(), hybrid.result.bytes());
         EXPECT_LE(diff.fraction_over_one, 1e-4) << "scale " << s << ": " << diff.pixels_over_one;
         EXPECT_GE(id_agreement(reference.result.ids, hybrid.result.ids), 0.9999) << "scale " << s;
     }
@@ -359,19 +361,25 @@ TEST_P(HybridTest, HybridImageAgreesWithRayImage) {
     const World world(scene);
     FrameSettings settings{Mode::ray, GlBackend::osmesa, c.raster, kDefaultTessellation, c.resolve,
                            0};
+    settings.aovs = c.resolve == Resolve::exact;
     const Frame ray = render_frame(world, settings);
     settings.mode = Mode::hybrid;
     const Frame hybrid = render_frame(world, settings);
-    const ImageDifference diff = compare_images(ray.result.image, hybrid.result.image);
+    const ImageDifference diff = compare_images(ray.result.bytes(), hybrid.result.bytes());
     const double agreement = id_agreement(ray.result.ids, hybrid.result.ids);
     if (c.resolve == Resolve::exact) {
         // Issue 19's acceptance: byte for byte. Exact resolve reproduces ray mode's hit wherever
         // the item buffer is conservative up to rounding, and on id boundaries, where rounding
         // can decide coverage, it tests every object of the pixel's bin (primary_hits.cpp).
-        EXPECT_EQ(ray.result.image.rgb, hybrid.result.image.rgb)
+        EXPECT_EQ(ray.result.bytes().rgb, hybrid.result.bytes().rgb)
             << diff.pixels_over_one << " pixels differ";
         EXPECT_EQ(ray.result.ids, hybrid.result.ids);
         EXPECT_EQ(agreement, 1.0);
+        // And the same floats: the EXR's colour and its AOVs (DESIGN §12).
+        EXPECT_EQ(ray.result.radiance.rgb, hybrid.result.radiance.rgb);
+        EXPECT_EQ(ray.result.aovs.depth, hybrid.result.aovs.depth);
+        EXPECT_EQ(ray.result.aovs.normal, hybrid.result.aovs.normal);
+        EXPECT_EQ(ray.result.aovs.id, hybrid.result.aovs.id);
     } else {
         // Trust is wrong only where another object's surface lies within the tessellation gap
         // (at most 0.5% of a radius at level 32) in front of the named object: along contact

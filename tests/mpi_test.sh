@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # glint across MPI ranks (docs/DISTRIBUTED.md), run by ctest where MPI was found:
 #   mpi_test.sh GLINT MPIRUN identical NP   the image of `mpirun -np NP` is byte for byte the
-#                                           single process's: shipped and SPD scenes, each in one
+#                                           single process's (and on three scenes its EXR with
+#                                           every AOV): shipped and SPD scenes, each in one
 #                                           mode and with one of: one sample, adaptive 3x3,
 #                                           uniform 2x2, in turn, shifted by NP, so that NP 2 and
 #                                           3 together render each scene in both modes (each
@@ -39,6 +40,16 @@ identical)
         grep -q "ranks: $np × 1 threads" "$work/out.txt" || fail "np $np: no per-rank report"
         [ "$(grep -c '^  rank ' "$work/out.txt")" -eq "$np" ] || fail "np $np: not one line per rank"
         runs=$((runs + 1))
+        # The float image and every AOV too, on the first scenes (an EXR's bytes are a function
+        # of its floats: same floats, same file).
+        if [ "$i" -lt 3 ]; then
+          aovs=(--aov depth,normal,id,cutoff)
+          "$glint" render "${args[@]}" "${aovs[@]}" -o "$work/one.exr" >/dev/null
+          "$mpirun" -np "$np" --bind-to none "$glint" render "${args[@]}" "${aovs[@]}" \
+            -o "$work/many.exr" >/dev/null
+          cmp -s "$work/one.exr" "$work/many.exr" || fail "np $np: ${args[*]}: the EXRs differ"
+          runs=$((runs + 1))
+        fi
       done
     done
   done

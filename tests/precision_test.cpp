@@ -35,7 +35,7 @@ TEST_P(ShippedScene, FloatRendersWhatTheDoublePrecisionReferenceRenders) {
     const RenderResult single = ray_render(scene);
     const RenderResult reference = ray_render(scene, Precision::f64);
     EXPECT_GE(id_agreement(reference.ids, single.ids), 0.999);
-    const ImageDifference diff = compare_images(reference.image, single.image);
+    const ImageDifference diff = compare_images(reference.bytes(), single.bytes());
     EXPECT_LE(diff.fraction_over_one, 0.002);
     EXPECT_GE(diff.psnr_db, 45.0);
     EXPECT_EQ(reference.rays.primary, single.rays.primary);
@@ -66,13 +66,13 @@ TEST_P(ShippedScene, TheReflectionCutOffBoundHoldsOnEveryPixel) {
         if (glass && cutoff == 0) continue;
         Scene deep = scene_as_shipped;
         deep.render = glass ? RenderSettings{24, cutoff} : RenderSettings{64, 0.0f};
-        const Image untruncated = ray_render(deep).image;
+        const Image untruncated = ray_render(deep).bytes();
         for (const int depth : {0, 1, 2, 3, 5, 8}) {
             Scene scene = deep;
             scene.render = {depth, cutoff};
             const RenderResult truncated = ray_render(scene);
             const CutoffBound bound = cutoff_bound(scene, truncated);
-            const std::uint64_t violations = cutoff_violations(bound, truncated.image, untruncated);
+            const std::uint64_t violations = cutoff_violations(bound, truncated.bytes(), untruncated);
             EXPECT_EQ(violations, 0u) << "max_depth " << depth << ", min_reflectivity " << cutoff;
         }
     }

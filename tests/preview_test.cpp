@@ -58,8 +58,8 @@ TEST_P(RefinerTest, TheSecondPassRefinesToTheScenesSamples) {
         auto job = std::make_shared<RefineJob>(world, ids_by_ray(*world), Resolve::exact);
         EXPECT_EQ(job->passes(), aa == Antialias::uniform ? 2 : 3);
         run_to_completion(job, 2);
-        EXPECT_EQ(job->traced(View::final, 1).rgb, centres.image.rgb) << name_of(aa);
-        EXPECT_EQ(job->traced(View::final).rgb, sampled.image.rgb) << name_of(aa);
+        EXPECT_EQ(job->traced(View::final, 1).rgb, centres.bytes().rgb) << name_of(aa);
+        EXPECT_EQ(job->traced(View::final).rgb, sampled.bytes().rgb) << name_of(aa);
         // Uniform: the preview's first pass comes on top of the grids, which render skips.
         EXPECT_EQ(job->rays().total(),
                   sampled.rays.total() + (aa == Antialias::uniform ? centres.rays.total() : 0))
@@ -81,7 +81,7 @@ TEST_P(RefinerTest, AFinishedJobIsTheHeadlessImage) {
     for (const int threads : {1, 3}) {
         auto job = std::make_shared<RefineJob>(world, nullptr, Resolve::exact);
         run_to_completion(job, threads);
-        EXPECT_EQ(job->traced(View::final).rgb, by_ray.image.rgb) << threads << " threads";
+        EXPECT_EQ(job->traced(View::final).rgb, by_ray.bytes().rgb) << threads << " threads";
         EXPECT_EQ(job->rays().primary, by_ray.rays.primary);
         EXPECT_EQ(job->rays().shadow, by_ray.rays.shadow);
         EXPECT_EQ(job->rays().reflection, by_ray.rays.reflection);
@@ -93,7 +93,7 @@ TEST_P(RefinerTest, AFinishedJobIsTheHeadlessImage) {
         shade_image(*world, primary_hits(*world, {ids.get(), Resolve::exact}, stats));
     auto job = std::make_shared<RefineJob>(world, ids, Resolve::exact);
     run_to_completion(job, 2);
-    EXPECT_EQ(job->traced(View::final).rgb, hybrid.image.rgb);
+    EXPECT_EQ(job->traced(View::final).rgb, hybrid.bytes().rgb);
     EXPECT_EQ(job->primary_stats().exact_intersections, stats.exact_intersections);
     EXPECT_EQ(job->primary_stats().edges, stats.edges);
     EXPECT_GT(job->seconds(), 0.0);
@@ -156,7 +156,7 @@ TEST(Refiner, StoppingAndRestartingRunsTheNewJobToTheEnd) {
     refiner.start(second);
     while (!second->finished()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
     EXPECT_EQ(first->tiles_done(), done) << "no tile of a stopped job is traced afterwards";
-    EXPECT_EQ(second->traced(View::final).rgb, render(*world).image.rgb);
+    EXPECT_EQ(second->traced(View::final).rgb, render(*world).bytes().rgb);
 }
 
 double distance(const Camera& c) {

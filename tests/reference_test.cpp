@@ -243,7 +243,7 @@ struct ReferenceMatch {
 
 ReferenceMatch expect_matches_reference(const Scene& scene, const std::string& label,
                                         int tolerance = 2) {
-    const Image image = render(World(scene)).image;
+    const Image image = render(World(scene)).bytes();
     const ReferenceRenderer reference(scene);
     const int w = scene.camera.width, h = scene.camera.height;
     std::vector<std::size_t> keys(static_cast<std::size_t>(w) * h);

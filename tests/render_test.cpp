@@ -27,7 +27,7 @@ TEST(Render, OneAndTwoThreadsGiveIdenticalBytes) {
     const World world(default_scene(203, 151)); // sizes that leave partial tiles
     const RenderResult one = render(world, {1, nullptr});
     const RenderResult two = render(world, {2, nullptr});
-    EXPECT_EQ(one.image.rgb, two.image.rgb);
+    EXPECT_EQ(one.bytes().rgb, two.bytes().rgb);
     EXPECT_EQ(one.rays.shadow, two.rays.shadow);
     EXPECT_EQ(one.rays.reflection, two.rays.reflection);
 }
@@ -38,6 +38,7 @@ TEST(Render, APixelTracedAloneIsThePixelOfTheFrame) {
     const World world(default_scene(64, 48));
     const std::vector<Hit> primary = primary_hits_by_ray(world);
     const RenderResult frame = shade_image(world, primary);
+    const Image bytes = frame.bytes();
     RayCounts total;
     int hits = 0;
     for (int y = 0; y < 48; ++y) {
@@ -47,7 +48,7 @@ TEST(Render, APixelTracedAloneIsThePixelOfTheFrame) {
             const std::size_t i = static_cast<std::size_t>(y) * 64 + x;
             std::uint8_t rgb[3];
             store_colour(sample.colour, rgb);
-            ASSERT_TRUE(std::equal(rgb, rgb + 3, frame.image.pixel(x, y))) << x << ", " << y;
+            ASSERT_TRUE(std::equal(rgb, rgb + 3, bytes.pixel(x, y))) << x << ", " << y;
             EXPECT_EQ(static_cast<float>(sample.omitted_weight), frame.omitted_weight[i]);
             EXPECT_EQ(sample.hit.found(), primary[i].found());
             total += sample.rays;
@@ -79,7 +80,7 @@ TEST(Render, AWorldForAMovedCameraRendersWhatAFreshWorldDoes) {
             const World moved(scene, before);
             const World fresh(scene, kind);
             EXPECT_EQ(moved.accelerator().kind(), kind);
-            EXPECT_EQ(render(moved).image.rgb, render(fresh).image.rgb)
+            EXPECT_EQ(render(moved).bytes().rgb, render(fresh).bytes().rgb)
                 << name << ", " << name_of(kind);
             if (!scene.meshes.empty()) {
                 EXPECT_EQ(&moved.mesh(0), &before.mesh(0)) << name << ": a mesh was prepared again";
@@ -102,7 +103,7 @@ TEST(Render, ProgressCountsEveryTile) {
 // flips a pixel between two objects. A real change to shading or geometry moves far more.
 TEST(Render, DefaultSceneMatchesTheGoldenImage) {
     const Image golden = read_png(GLINT_SOURCE_DIR "/tests/data/default_160x120.png");
-    const Image image = render(World(default_scene(160, 120))).image;
+    const Image image = render(World(default_scene(160, 120))).bytes();
     ASSERT_EQ(image.width, golden.width);
     ASSERT_EQ(image.height, golden.height);
     int off = 0;

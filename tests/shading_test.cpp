@@ -39,7 +39,7 @@ TEST(Shading, OneSphereOneLightGivesTheHandComputedPixel) {
     const double expected[3] = {0.2 * 0.5 + 0.8 * (0.5 + 0.2), 0.4 * 0.5 + 0.6 * (0.25 + 0.2),
                                 0.6 * 0.5 + 0.4 * (0.125 + 0.2)};
     for (int c = 0; c < 3; ++c)
-        EXPECT_EQ(r.image.rgb[c], std::lround(255 * expected[c])) << "channel " << c;
+        EXPECT_EQ(r.bytes().rgb[c], std::lround(255 * expected[c])) << "channel " << c;
     EXPECT_EQ(r.rays.primary, 1u);
     EXPECT_EQ(r.rays.shadow, 1u);
     EXPECT_EQ(r.rays.reflection, 0u);
@@ -56,6 +56,7 @@ TEST(Shading, EveryPixelOfALitSphereMatchesTheConventionsInDouble) {
         "objects": [{"shape": "sphere", "material": "m"}]})",
                                     "lit-sphere.json");
     const RenderResult r = render(World(scene));
+    const Image bytes = r.bytes();
     const DVec3 eye(0.5, 1, 4), light(3, 4, 5);
     const DVec3 forward = glm::normalize(-eye);
     const DVec3 right = glm::normalize(glm::cross(forward, DVec3(0, 1, 0)));
@@ -82,7 +83,7 @@ TEST(Shading, EveryPixelOfALitSphereMatchesTheConventionsInDouble) {
                 continue; // silhouette: float and double may disagree on hit or miss
             }
             for (int c = 0; c < 3; ++c)
-                EXPECT_NEAR(r.image.pixel(i, j)[c], 255 * std::clamp(colour[c], 0.0, 1.0),
+                EXPECT_NEAR(bytes.pixel(i, j)[c], 255 * std::clamp(colour[c], 0.0, 1.0),
                             0.5 + 1e-3)
                     << "pixel " << i << "," << j;
         }
@@ -100,10 +101,10 @@ TEST(Shading, AnOccluderBetweenPointAndLightLeavesOnlyAmbient) {
         "objects": [{"shape": "plane", "material": "m"},
                     {"shape": "sphere", "transform": [{"scale": 0.5}, {"translate": [3, 3, 0]}]}]})",
                                     "shadow.json");
-    EXPECT_EQ(render(World(scene)).image.rgb[0], std::lround(255 * (0.8 * 0.25 + 0.8)));
+    EXPECT_EQ(render(World(scene)).bytes().rgb[0], std::lround(255 * (0.8 * 0.25 + 0.8)));
     Scene shadowed = scene;
     shadowed.objects[1].transform = translation_matrix({0, 7, 0}) * scale_matrix(DVec3(0.5));
-    EXPECT_EQ(render(World(shadowed)).image.rgb[0], std::lround(255 * 0.8 * 0.25));
+    EXPECT_EQ(render(World(shadowed)).bytes().rgb[0], std::lround(255 * 0.8 * 0.25));
 }
 
 TEST(Shading, LightsBehindTheSurfaceCastNoShadowRay) {
@@ -113,7 +114,7 @@ TEST(Shading, LightsBehindTheSurfaceCastNoShadowRay) {
                                     "behind.json");
     const RenderResult r = render(World(scene));
     EXPECT_EQ(r.rays.shadow, 0u);
-    EXPECT_EQ(r.image.rgb[0], 0);
+    EXPECT_EQ(r.bytes().rgb[0], 0);
 }
 
 // Two parallel perfect mirrors (y = 0 and y = 2) and a camera between them looking obliquely:
@@ -154,8 +155,8 @@ TEST(Reflection, AReflectionRayThatEscapesAddsTheBackground) {
         "objects": [{"shape": "plane", "material": "m"}]})",
                                     "sky.json");
     const RenderResult r = render(World(scene));
-    EXPECT_EQ(r.image.rgb[0], std::lround(255 * 0.5 * 0.2));
-    EXPECT_EQ(r.image.rgb[2], std::lround(255 * 0.5 * 0.6));
+    EXPECT_EQ(r.bytes().rgb[0], std::lround(255 * 0.5 * 0.2));
+    EXPECT_EQ(r.bytes().rgb[2], std::lround(255 * 0.5 * 0.6));
 }
 
 } // namespace

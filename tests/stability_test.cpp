@@ -33,8 +33,8 @@ class ScaleTest : public ::testing::TestWithParam<double> {};
 TEST_P(ScaleTest, AUniformlyScaledSceneRendersTheSameImage) {
     for (const char* name : {"default", "mirrors"}) {
         const Scene scene = shipped(name, 160, 120);
-        const Image reference = render(World(scene)).image;
-        const Image scaled = render(World(moved(scene, GetParam(), DVec3(0.0)))).image;
+        const Image reference = render(World(scene)).bytes();
+        const Image scaled = render(World(moved(scene, GetParam(), DVec3(0.0)))).bytes();
         const ImageDifference d = compare_images(reference, scaled);
         EXPECT_LE(d.fraction_over_one, kEdgeFlips)
             << name << " scaled by " << GetParam() << ": " << d.pixels_over_one << " pixels";
@@ -52,10 +52,10 @@ TEST(Stability, ASceneMovedAMillionUnitsAwayRendersTheSameImage) {
     // the distance to the world origin, so the image is byte for byte the same.
     for (const char* name : {"default", "transforms"}) {
         const Scene scene = shipped(name, 160, 120);
-        const Image reference = render(World(scene)).image;
+        const Image reference = render(World(scene)).bytes();
         for (const DVec3 d : {DVec3(1e6, 0, 0), DVec3(-1e6, 1e6, 1e6), DVec3(0, 0, 1e6)}) {
             const ImageDifference diff =
-                compare_images(reference, render(World(moved(scene, 1.0, d))).image);
+                compare_images(reference, render(World(moved(scene, 1.0, d))).bytes());
             EXPECT_EQ(diff.pixels_over_one, 0u) << name;
             EXPECT_LE(diff.max_abs_error, 1) << name;
         }
@@ -169,11 +169,11 @@ TEST(Stability, FacingMirrorsStopAtMaxDepthAndConverge) {
         EXPECT_LE(r.rays.reflection, pixels * depth) << "depth " << depth;
         EXPECT_GE(r.rays.reflection, pixels * depth * 9 / 10) << "most rays bounce every time";
         if (depth > 0) {
-            const int error = compare_images(previous, r.image).max_abs_error;
+            const int error = compare_images(previous, r.bytes()).max_abs_error;
             EXPECT_LE(error, std::max(1, previous_error)) << "depth " << depth;
             previous_error = error;
         }
-        previous = r.image;
+        previous = r.bytes();
     }
     EXPECT_LE(previous_error, 12) << "0.9^20 of the light is left after 20 bounces: ~12%";
 }

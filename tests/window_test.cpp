@@ -60,7 +60,7 @@ TEST(Preview, ScriptedScreenshotOfTheDefaultSceneMatchesTheHeadlessHybridRender)
     const Image shown = screenshot(scene, View::final, "default");
     ASSERT_EQ(shown.width, scene.camera.width);
     ASSERT_EQ(shown.height, scene.camera.height);
-    const ImageDifference diff = compare_images(headless_hybrid(scene).result.image, shown);
+    const ImageDifference diff = compare_images(headless_hybrid(scene).result.bytes(), shown);
     EXPECT_LE(diff.fraction_over_one, 1e-4) << diff.pixels_over_one << " pixels";
 }
 
@@ -76,7 +76,7 @@ TEST(Preview, EveryViewOfEveryShippedSceneShowsWhatItShould) {
         scene.render.samples = 1;
         const Frame headless = headless_hybrid(scene);
         const Image final_view = screenshot(scene, View::final, name);
-        EXPECT_LE(compare_images(headless.result.image, final_view).fraction_over_one, 1e-4);
+        EXPECT_LE(compare_images(headless.result.bytes(), final_view).fraction_over_one, 1e-4);
         const Image items = screenshot(scene, View::items, name);
         const IdImage& ids = headless.items->ids;
         EXPECT_EQ(items.rgb, false_colour(ids.ids, ids.width, ids.height).rgb);
@@ -230,14 +230,14 @@ TEST(Preview, ThePanelsControlsChangeWhatIsTraced) {
     FrameSettings ray;
     ray.mode = Mode::ray;
     const Frame headless = render_frame(World(expected, AccelKind::kd), ray);
-    EXPECT_EQ(shown.rgb, headless.result.image.rgb);
-    EXPECT_NE(shown.rgb, render_frame(World(options.scene), ray).result.image.rgb);
+    EXPECT_EQ(shown.rgb, headless.result.bytes().rgb);
+    EXPECT_NE(shown.rgb, render_frame(World(options.scene), ray).result.bytes().rgb);
 }
 
 // G hides the panel (and an explained tree): the screenshot is then the render alone.
 TEST(Preview, GHidesThePanelForCleanScreenshots) {
     PreviewOptions options = preview_of("default", 320, 240);
-    const Image render = render_frame(World(options.scene), FrameSettings{}).result.image;
+    const Image render = render_frame(World(options.scene), FrameSettings{}).result.bytes();
     const auto [with_panel, unused] = scripted(options, "with-panel");
     EXPECT_NE(with_panel.rgb, render.rgb);
     options.keys = "G";

@@ -4,7 +4,7 @@
 // writes. docs/EXPLAIN.md shows it at work.
 #pragma once
 
-#include "trace/precision.h"
+#include "trace/render_result.h"
 #include "trace/primary_hits.h"
 #include "trace/recorder.h"
 

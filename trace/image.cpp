@@ -14,6 +14,12 @@
 
 namespace glint {
 
+Image to_bytes(const FloatImage& colour) {
+    Image image(colour.width, colour.height);
+    for (std::size_t i = 0; i < colour.rgb.size(); ++i) image.rgb[i] = to_byte(colour.rgb[i]);
+    return image;
+}
+
 void write_file_atomically(const std::filesystem::path& path, const std::string& bytes) {
     const auto fail = [&](const std::string& what) {
         throw std::runtime_error("cannot write " + path.string() + ": " + what);

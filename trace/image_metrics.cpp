@@ -1,7 +1,9 @@
 #include "trace/image_metrics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace glint {
 
@@ -63,6 +65,20 @@ double id_agreement(const std::vector<std::uint32_t>& a, const std::vector<std::
     std::size_t same = 0;
     for (std::size_t i = 0; i < a.size(); ++i) same += a[i] == b[i];
     return a.empty() ? 1.0 : static_cast<double>(same) / static_cast<double>(a.size());
+}
+
+void add_radiance_error(ImageDifference& diff, const FloatImage& reference,
+                        const FloatImage& test) {
+    if (reference.width != test.width || reference.height != test.height)
+        throw std::invalid_argument("compare: images differ in size");
+    double squares = 0, largest = 0;
+    for (std::size_t i = 0; i < reference.rgb.size(); ++i) {
+        const double d = std::abs(double(test.rgb[i]) - double(reference.rgb[i]));
+        squares += d * d;
+        largest = std::max(largest, d);
+    }
+    diff.rmse = reference.rgb.empty() ? 0 : std::sqrt(squares / double(reference.rgb.size()));
+    diff.max_radiance_error = largest;
 }
 
 } // namespace glint

@@ -9,6 +9,18 @@
 namespace glint {
 inline namespace GLINT_PRECISION {
 
+RenderResult blank_result(const PinholeCamera& camera, int samples, bool aovs) {
+    const int width = camera.width(), height = camera.height();
+    const std::size_t pixels = static_cast<std::size_t>(width) * height;
+    RenderResult result;
+    result.radiance = FloatImage(width, height);
+    if (samples > 1) result.clamped = FloatImage(width, height);
+    result.omitted_weight.assign(pixels, 0.0f);
+    result.ids.assign(pixels, 0);
+    if (aovs) result.aovs = PrimaryAovs(pixels);
+    return result;
+}
+
 namespace {
 
 // Shades tile [x0, x1)×[y0, y1) from its primary hits into `result` (and `path_keys`, where
@@ -33,30 +45,21 @@ RayCounts shade_tile(const World& world, const std::vector<Hit>& primary, int x0
         const PixelSample sample = shade_pixel(world, rays[k], hits[k], lighting.at(k));
         result.omitted_weight[i] = static_cast<float>(sample.omitted_weight);
         if (path_keys) (*path_keys)[i] = sample.path_key;
-        store_colour(sample.colour,
-                     result.image.pixel(static_cast<int>(i % width), static_cast<int>(i / width)));
+        store_pixel(result, i, sample.colour, glm::clamp(sample.colour, Vec3(0), Vec3(1)));
+        store_aovs(result, i, sample.hit, sample.normal);
         counts += sample.rays;
     }
     return counts;
 }
 
-RenderResult blank_result(const PinholeCamera& camera, std::vector<std::uint64_t>* path_keys) {
-    const std::size_t pixels = static_cast<std::size_t>(camera.width()) * camera.height();
-    RenderResult result{Image(camera.width(), camera.height()), {}, {}, {}, {}};
-    result.omitted_weight.assign(pixels, 0.0f);
-    if (path_keys) path_keys->assign(pixels, 0);
-    return result;
-}
-
 // One process of several (progress.exchange): primary hits and shading tile by tile in one loop,
 // so that the tiles it claims need nothing from another process; the two phases' shares of the
 // loop's wall time as their summed tile times say.
-RenderResult trace_claimed_tiles(const World& world, const PrimarySource& source,
-                                 PrimaryStats& stats, const TileProgress& progress,
-                                 PhaseTimes& times, std::vector<std::uint64_t>* path_keys) {
+void trace_claimed_tiles(const World& world, const PrimarySource& source, PrimaryStats& stats,
+                         const TileProgress& progress, PhaseTimes& times, RenderResult& result,
+                         std::vector<std::uint64_t>* path_keys) {
     const PinholeCamera& camera = world.camera();
     std::vector<Hit> primary(static_cast<std::size_t>(camera.width()) * camera.height());
-    RenderResult result = blank_result(camera, path_keys);
     std::mutex mutex;
     double primary_seconds = 0, shading_seconds = 0;
     const Stopwatch wall;
@@ -73,15 +76,12 @@ RenderResult trace_claimed_tiles(const World& world, const PrimarySource& source
     });
     result.ids = object_ids(primary); // the other processes' tiles come with the exchange
     times.add_split(wall.seconds(), primary_seconds, shading_seconds);
-    return result;
 }
 
-} // namespace
-
-RenderResult shade_image(const World& world, const std::vector<Hit>& primary,
-                         const TileProgress& progress, std::vector<std::uint64_t>* path_keys) {
+// Shades every pixel from its primary hit into `result`.
+void shade_into(const World& world, const std::vector<Hit>& primary, const TileProgress& progress,
+                RenderResult& result, std::vector<std::uint64_t>* path_keys) {
     const PinholeCamera& camera = world.camera();
-    RenderResult result = blank_result(camera, path_keys);
     result.ids = object_ids(primary);
     std::mutex counts_mutex;
     for_each_tile(camera.width(), camera.height(), progress, [&](int x0, int y0, int x1, int y1) {
@@ -89,6 +89,16 @@ RenderResult shade_image(const World& world, const std::vector<Hit>& primary,
         const std::lock_guard lock(counts_mutex); // integer sums: order does not matter
         result.rays += counts;
     });
+}
+
+} // namespace
+
+RenderResult shade_image(const World& world, const std::vector<Hit>& primary,
+                         const TileProgress& progress, std::vector<std::uint64_t>* path_keys) {
+    const PinholeCamera& camera = world.camera();
+    RenderResult result = blank_result(camera, 1, false);
+    if (path_keys) path_keys->assign(primary.size(), 0);
+    shade_into(world, primary, progress, result, path_keys);
     return result;
 }
 
@@ -106,14 +116,15 @@ std::vector<std::uint32_t> object_ids(const std::vector<Hit>& primary) {
 }
 
 RenderResult trace_frame(const World& world, const PrimarySource& source, PrimaryStats& stats,
-                         const TileProgress& progress, PhaseTimes& times) {
+                         const TileProgress& progress, PhaseTimes& times, bool aovs) {
     const RenderSettings& settings = world.settings();
+    RenderResult result = blank_result(world.camera(), settings.samples, aovs);
     // Several processes: after each pass every process gets the others' tiles.
-    const auto share = [&](RenderResult& result, std::vector<std::uint64_t>* keys) {
-        if (progress.exchange) progress.exchange->share(result, keys);
+    const auto share = [&](RenderResult& shared, std::vector<std::uint64_t>* keys) {
+        if (progress.exchange) progress.exchange->share(shared, keys);
     };
     if (settings.samples > 1 && settings.antialias == Antialias::uniform) {
-        RenderResult result = render_uniform_grids(world, source, stats, progress, times);
+        render_uniform_grids(world, source, stats, progress, times, result);
         share(result, nullptr);
         return result;
     }
@@ -121,18 +132,19 @@ RenderResult trace_frame(const World& world, const PrimarySource& source, Primar
     // antialiasing's first pass.
     const bool adaptive = settings.samples > 1;
     std::vector<std::uint64_t> path_keys;
-    RenderResult result;
+    if (adaptive) path_keys.assign(result.ids.size(), 0);
+    std::vector<std::uint64_t>* keys = adaptive ? &path_keys : nullptr;
     if (progress.exchange) {
-        result = trace_claimed_tiles(world, source, stats, progress, times,
-                                     adaptive ? &path_keys : nullptr);
+        trace_claimed_tiles(world, source, stats, progress, times, result, keys);
     } else {
         const std::vector<Hit> primary =
             timed(times.primary, [&] { return primary_hits(world, source, stats, progress); });
-        result = timed(times.shading, [&] {
-            return shade_image(world, primary, progress, adaptive ? &path_keys : nullptr);
+        timed(times.shading, [&] {
+            shade_into(world, primary, progress, result, keys);
+            return 0;
         });
     }
-    share(result, adaptive ? &path_keys : nullptr);
+    share(result, keys);
     if (adaptive) refine_adaptively(world, source, path_keys, result, stats, progress, times);
     return result;
 }

@@ -4,7 +4,7 @@
 
 #include "trace/image_metrics.h"
 #include "trace/pixel.h"
-#include "trace/precision.h"
+#include "trace/render_result.h"
 
 namespace glint {
 inline namespace GLINT_PRECISION {
@@ -13,6 +13,25 @@ inline namespace GLINT_PRECISION {
 inline void store_colour(Vec3 c, std::uint8_t* pixel) {
     for (int i = 0; i < 3; ++i) pixel[i] = to_byte(static_cast<float>(c[i]));
 }
+
+// Stores pixel i's colour, the mean of its samples: unclamped, and with each sample clamped
+// where the result keeps that apart (N > 1).
+inline void store_pixel(RenderResult& result, std::size_t i, Vec3 radiance, Vec3 clamped) {
+    result.radiance.set(i, radiance);
+    if (!result.clamped.empty()) result.clamped.set(i, clamped);
+}
+
+// Stores what pixel i's centre ray hit, where the result keeps its AOVs.
+inline void store_aovs(RenderResult& result, std::size_t i, const Hit& hit, Vec3 normal) {
+    if (result.aovs.empty() || !hit.found()) return;
+    result.aovs.depth[i] = static_cast<float>(hit.t);
+    for (int k = 0; k < 3; ++k) result.aovs.normal[3 * i + k] = static_cast<float>(normal[k]);
+    result.aovs.id[i] = hit.object + 1;
+}
+
+// An empty result for `camera`'s image: the clamped image where a pixel's samples are N > 1,
+// the AOVs where asked for.
+RenderResult blank_result(const PinholeCamera& camera, int samples, bool aovs);
 
 // Shades the pixels whose primary hits are given (row-major, top row first), each through
 // trace/pixel.h's path, one sample at each pixel's centre; with `path_keys`, also stores each
@@ -25,8 +44,9 @@ RenderResult shade_image(const World& world, const std::vector<Hit>& primary,
 // into `times` (frame/frame.h draws the item buffer before it in hybrid mode), with the scene's
 // antialiasing (trace/sampling.h): N = 1, the pixel centres; uniform, every pixel's N×N grid
 // (hybrid: source.sample_ids); adaptive, the centres, then the grid where the rule says.
+// With `aovs`, also keeps each pixel centre's primary hit (RenderResult::aovs).
 RenderResult trace_frame(const World& world, const PrimarySource& source, PrimaryStats& stats,
-                         const TileProgress& progress, PhaseTimes& times);
+                         const TileProgress& progress, PhaseTimes& times, bool aovs = false);
 
 // How many steps TileProgress::tiles_done counts to in a trace_frame of this size.
 int progress_steps(const RenderSettings& settings, int width, int height);

@@ -38,6 +38,33 @@ bool mixed_ids(const IdImage& samples, int x, int y, int n) {
     return false;
 }
 
+// The bytes of the pixels marked in `which`, from `colour` into `bytes`.
+void copy_bytes(const FloatImage& colour, const std::vector<std::uint8_t>& which, Image& bytes) {
+    for (std::size_t i = 0; i < which.size(); ++i)
+        if (which[i])
+            for (int c = 0; c < 3; ++c) bytes.rgb[3 * i + c] = to_byte(colour.rgb[3 * i + c]);
+}
+
+// The primary hits of the tile's pixel centres (§2's ray, whatever the grid) into result.aovs:
+// from the centres' item buffer where the source has one, else by camera ray. Returns the rays.
+RayCounts centre_aovs(const World& world, const PrimarySource& source, int x0, int y0, int x1,
+                      int y1, RenderResult& result) {
+    const PinholeCamera& camera = world.camera();
+    const PrimarySource centres{source.ids, source.resolve};
+    PrimaryStats unused; // the AOVs' own rays: not the frame's resolve figures
+    RayCounts counts;
+    for (int y = y0; y < y1; ++y) {
+        for (int x = x0; x < x1; ++x) {
+            const Ray ray = camera.ray(x, y);
+            const Hit hit = primary_hit(world, centres, x, y, ray, unused);
+            const Vec3 normal = hit.found() ? world.surface(ray, hit).shading : Vec3(0);
+            store_aovs(result, static_cast<std::size_t>(y) * camera.width() + x, hit, normal);
+            ++counts.primary;
+        }
+    }
+    return counts;
+}
+
 } // namespace
 
 std::vector<std::uint8_t> adaptive_refinement(const Image& first,
@@ -102,13 +129,14 @@ GridPixel shade_grid(const World& world, int x, int y, const Hit* hits, RayRecor
     const int n = world.settings().samples;
     const Real inverse_count = 1 / static_cast<Real>(n * n);
     GridPixel pixel;
-    Vec3 sum(0);
+    Vec3 sum(0), unclamped(0);
     Real omitted = 0;
     for (int b = 0; b < n; ++b) {
         for (int a = 0; a < n; ++a) {
             const PixelSample sample = shade_pixel(world, camera.sample_ray(x, y, a, b, n), *hits++,
                                                    {}, b * n + a == recorded ? recorder : nullptr);
             sum += glm::clamp(sample.colour, Vec3(0), Vec3(1));
+            unclamped += sample.colour;
             omitted += sample.omitted_weight;
             pixel.rays += sample.rays;
             if (a == n / 2 && b == n / 2)
@@ -116,6 +144,7 @@ GridPixel shade_grid(const World& world, int x, int y, const Hit* hits, RayRecor
         }
     }
     pixel.mean = sum * inverse_count;
+    pixel.radiance = unclamped * inverse_count;
     pixel.omitted_weight = omitted * inverse_count;
     return pixel;
 }
@@ -151,13 +180,14 @@ void supersample(const World& world, const PrimarySource& source,
                 grid_hits(world, source, x, y, &hits[hits.size() - grid], local_stats);
             }
         }
-        const double primary = watch.lap();
         RayCounts counts;
+        if (!only && !result.aovs.empty()) counts += centre_aovs(world, source, x0, y0, x1, y1, result);
+        const double primary = watch.lap();
         for (std::size_t k = 0; k < pixels.size(); ++k) {
             const std::size_t i = pixels[k];
             const int x = static_cast<int>(i % width), y = static_cast<int>(i / width);
             const GridPixel pixel = shade_grid(world, x, y, &hits[k * grid]);
-            store_colour(pixel.mean, result.image.pixel(x, y));
+            store_pixel(result, i, pixel.radiance, pixel.mean);
             result.omitted_weight[i] = static_cast<float>(pixel.omitted_weight);
             if (!only) result.ids[i] = pixel.centre_id;
             counts += pixel.rays;
@@ -172,37 +202,35 @@ void supersample(const World& world, const PrimarySource& source,
     times.add_split(wall.seconds(), primary_seconds, shading_seconds);
 }
 
-RenderResult render_uniform_grids(const World& world, const PrimarySource& source,
-                                  PrimaryStats& stats, const TileProgress& progress,
-                                  PhaseTimes& times) {
-    const PinholeCamera& camera = world.camera();
-    const std::size_t pixels = static_cast<std::size_t>(camera.width()) * camera.height();
-    RenderResult result{Image(camera.width(), camera.height()), {}, {}, {}, {}};
-    result.omitted_weight.assign(pixels, 0.0f);
-    result.ids.assign(pixels, 0);
+void render_uniform_grids(const World& world, const PrimarySource& source, PrimaryStats& stats,
+                          const TileProgress& progress, PhaseTimes& times, RenderResult& result) {
     supersample(world, source, nullptr, result, stats, progress, times);
-    return result;
 }
 
 void refine_adaptively(const World& world, const PrimarySource& source,
                        const std::vector<std::uint64_t>& path_keys, RenderResult& result,
                        PrimaryStats& stats, const TileProgress& progress, PhaseTimes& times) {
     const RenderSettings& settings = world.settings();
+    // The rule reads the display's bytes (DESIGN §11): the first pass's, and after each pass
+    // those of the pixels it refined.
+    const Image first = result.bytes();
     result.refined = timed(times.shading, [&] {
-        return adaptive_refinement(result.image, path_keys, source.sample_ids, settings.samples,
+        return adaptive_refinement(first, path_keys, source.sample_ids, settings.samples,
                                    settings.aa_threshold);
     });
-    const Image first = result.image;
     supersample(world, source, &result.refined, result, stats, progress, times);
     if (progress.exchange) progress.exchange->share(result, nullptr);
     // The rounds' scans count as shading; supersample times its own passes.
     const double timed_before = times.primary + times.shading;
     const Stopwatch rounds;
-    spread_refinement(first, result.image, result.refined, settings.aa_threshold,
+    Image current = first;
+    copy_bytes(result.display(), result.refined, current);
+    spread_refinement(first, current, result.refined, settings.aa_threshold,
                       [&](const std::vector<std::uint8_t>& next) {
                           supersample(world, source, &next, result, stats,
                                       {progress.threads, nullptr, progress.exchange}, times);
                           if (progress.exchange) progress.exchange->share(result, nullptr);
+                          copy_bytes(result.display(), next, current);
                           return true;
                       });
     times.shading += rounds.seconds() - (times.primary + times.shading - timed_before);

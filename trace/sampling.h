@@ -44,7 +44,8 @@ void grid_hits(const World& world, const PrimarySource& source, int x, int y, Hi
 // A pixel from its grid: each sample shaded through trace/pixel.h's path, its colour clamped to
 // [0, 1], the clamped colours summed row of samples by row and divided by N².
 struct GridPixel {
-    Vec3 mean{0};
+    Vec3 mean{0};     // of the clamped samples: what a display shows
+    Vec3 radiance{0}; // of the samples unclamped: what an HDR file keeps
     RayCounts rays;
     Real omitted_weight = 0;     // the samples' mean (trace/cutoff.h)
     std::uint32_t centre_id = 0; // sample (N/2, N/2)'s object + 1, 0 for background
@@ -78,18 +79,19 @@ std::size_t spread_refinement(const Image& first, const Image& current,
 
 // Replaces, in `result`, each pixel with its N×N grid's mean (n = world.settings().samples;
 // every pixel, or only where `only` is 1), by grid_hits and shade_grid. Ray counts add to
-// result.rays; the pixel's cut-off weight becomes its samples' mean. The primary-hit and shading
+// result.rays; the pixel's cut-off weight becomes its samples' mean. Where `only` is null and
+// the result keeps AOVs, each pixel centre's primary hit is found too (its camera ray, counted
+// as a primary ray). The primary-hit and shading
 // parts of each tile are timed apart and the pass's wall time shared between times.primary and
 // times.shading in their ratio.
 void supersample(const World& world, const PrimarySource& source,
                  const std::vector<std::uint8_t>* only, RenderResult& result, PrimaryStats& stats,
                  const TileProgress& progress, PhaseTimes& times);
 
-// Uniform antialiasing's frame: every pixel's grid mean (supersample), and as the pixel's id its
-// sample (N/2, N/2)'s object.
-RenderResult render_uniform_grids(const World& world, const PrimarySource& source,
-                                  PrimaryStats& stats, const TileProgress& progress,
-                                  PhaseTimes& times);
+// Uniform antialiasing's frame into `result` (trace/render.h's blank_result): every pixel's grid
+// mean (supersample), and as the pixel's id its sample (N/2, N/2)'s object.
+void render_uniform_grids(const World& world, const PrimarySource& source, PrimaryStats& stats,
+                          const TileProgress& progress, PhaseTimes& times, RenderResult& result);
 
 // Adaptive antialiasing after its first pass (`result`, N = 1's image, with its `path_keys`):
 // rules 1 to 3 pick the pixels, supersample redoes them, and rule 4 spreads round by round

@@ -3,7 +3,7 @@
 // §11, docs/ARCHITECTURE.md) transmission, shadows through glass and the checker.
 #pragma once
 
-#include "trace/precision.h"
+#include "trace/render_result.h"
 #include "trace/world.h"
 
 namespace glint {

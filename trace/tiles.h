@@ -16,7 +16,7 @@ namespace glint {
 
 inline constexpr int kTileSize = 32;
 
-struct RenderResult; // trace/precision.h
+struct RenderResult; // trace/render_result.h
 
 // One frame rendered by several processes (docs/DISTRIBUTED.md). Every tile loop of the frame
 // hands its tiles out as the processes ask for them (`claim`: the next tile nobody has taken in
@@ -60,6 +60,27 @@ inline int tile_count(int width, int height) {
     return ((width + kTileSize - 1) / kTileSize) * ((height + kTileSize - 1) / kTileSize);
 }
 
+// Pixels [x0, x1)×[y0, y1) of an image.
+struct TileRect {
+    int x0, y0, x1, y1;
+    std::size_t pixels() const { return static_cast<std::size_t>(x1 - x0) * (y1 - y0); }
+};
+
+// Tile `tile` of a width×height image, tiles numbered row by row from the top left: the one
+// place that turns a tile's number into its pixels.
+inline TileRect tile_rect(int width, int height, int tile) {
+    const int tiles_x = (width + kTileSize - 1) / kTileSize;
+    const int x0 = (tile % tiles_x) * kTileSize, y0 = (tile / tiles_x) * kTileSize;
+    return {x0, y0, std::min(x0 + kTileSize, width), std::min(y0 + kTileSize, height)};
+}
+
+// Calls visit(i) for each pixel index (y·width + x) of tile `tile`, row by row.
+template <class Visit> void for_each_pixel_of_tile(int width, int height, int tile, const Visit& visit) {
+    const TileRect r = tile_rect(width, height, tile);
+    for (int y = r.y0; y < r.y1; ++y)
+        for (int x = r.x0; x < r.x1; ++x) visit(static_cast<std::size_t>(y) * width + x);
+}
+
 // Whether pred(nx, ny) holds for any pixel of the 3×3 neighbourhood of (x, y) (itself included)
 // that lies inside a width×height image; stops at the first that does. The exact resolve's edge
 // test and the adaptive antialiasing rule (trace/sampling.cpp) read neighbourhoods this way.
@@ -88,7 +109,6 @@ template <class Body> void for_each_in_blocks(int x0, int y0, int x1, int y1, co
 // taking its own index).
 template <class Body>
 void for_each_tile(int width, int height, const TileProgress& progress, const Body& body) {
-    const int tiles_x = (width + kTileSize - 1) / kTileSize;
     TileExchange* const exchange = progress.exchange;
     tbb::task_arena arena(progress.threads > 0 ? progress.threads : tbb::task_arena::automatic);
     arena.execute([&] {
@@ -101,8 +121,8 @@ void for_each_tile(int width, int height, const TileProgress& progress, const Bo
                         if ((tile = exchange->claim()) < 0) continue;
                         exchange->take(tile);
                     }
-                    const int x0 = (tile % tiles_x) * kTileSize, y0 = (tile / tiles_x) * kTileSize;
-                    body(x0, y0, std::min(x0 + kTileSize, width), std::min(y0 + kTileSize, height));
+                    const TileRect rect = tile_rect(width, height, tile);
+                    body(rect.x0, rect.y0, rect.x1, rect.y1);
                     if (progress.tiles_done)
                         progress.tiles_done->fetch_add(1, std::memory_order_relaxed);
                 }

@@ -1,14 +1,17 @@
-// A frame traced in either precision (trace/math.h), through types both share: the double-
-// precision tracer is the reference for the float one, in the tests and in `glint tradeoff`.
+// What a frame's trace gives back, the same type in either precision (trace/math.h): its float
+// image, AOVs, ray counts and phase times. The double-precision tracer is the reference for the
+// float one, in the tests and in `glint tradeoff`.
 #pragma once
 
 #include "trace/accel/accel_kind.h"
 #include "trace/image.h"
+#include "trace/image_metrics.h"
 #include "trace/names.h"
 #include "trace/scene.h"
 #include "trace/tiles.h"
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -28,10 +31,30 @@ struct RayCounts {
     std::uint64_t total() const { return primary + shadow + reflection + transmission; }
 };
 
+// The primary hit of each pixel centre (DESIGN §12: §2's ray, whatever the sample grid), kept
+// where a frame is asked for its AOVs (`glint render --aov`); per pixel, row-major, top row
+// first. Hybrid and ray mode find the same hits, so they keep the same values.
+struct PrimaryAovs {
+    std::vector<float> depth;      // the hit's t: the distance from the eye; +inf for no hit
+    std::vector<float> normal;     // 3 a pixel: unit world shading normal facing the eye; 0, 0, 0
+    std::vector<std::uint32_t> id; // object index + 1; 0 where nothing is hit
+
+    explicit PrimaryAovs(std::size_t pixels = 0)
+        : depth(pixels, std::numeric_limits<float>::infinity()), normal(3 * pixels, 0.0f),
+          id(pixels, 0) {}
+    bool empty() const { return depth.empty(); }
+};
+
 // The pixels of one render, whichever mode and precision made them; per pixel, row-major, top
 // row first. frame/frame.h's Frame wraps it with the phase times.
 struct RenderResult {
-    Image image;
+    // Each pixel's colour, linear: the mean of its samples' unclamped colours (radiance above 1
+    // survives; what an EXR holds).
+    FloatImage radiance;
+    // With N×N samples a pixel (N > 1): the mean of the samples' colours each clamped to [0, 1]
+    // (DESIGN §11), what the PNG shows. Empty with one sample a pixel, where it is the radiance
+    // clamped.
+    FloatImage clamped;
     RayCounts rays;
     // The summed path weights of the reflected and transmitted rays that max_depth or
     // min_reflectivity kept from being cast, 0 where none was (trace/cutoff.h).
@@ -41,7 +64,22 @@ struct RenderResult {
     std::vector<std::uint32_t> ids;
     // Adaptive antialiasing only: 1 where the pixel took its N×N grid, 0 where its centre.
     std::vector<std::uint8_t> refined;
+    // Where asked for: what the pixel centres' primary rays hit.
+    PrimaryAovs aovs;
+
+    // The colour a display shows, each channel clamped to [0, 1].
+    const FloatImage& display() const { return clamped.empty() ? radiance : clamped; }
+    // The PNG's bytes: round(255·c) of the display colour (DESIGN §11).
+    Image bytes() const { return to_bytes(display()); }
 };
+
+// `test` against `reference`: their PNG bytes (PSNR, largest error, pixels off by more than
+// 1/255 and 2/255), and their float images in radiance (RMSE, largest difference).
+inline ImageDifference compare_results(const RenderResult& reference, const RenderResult& test) {
+    ImageDifference diff = compare_images(reference.bytes(), test.bytes());
+    add_radiance_error(diff, reference.radiance, test.radiance);
+    return diff;
+}
 
 // Wall time of each phase of a frame, in seconds (trace/stopwatch.h).
 struct PhaseTimes {

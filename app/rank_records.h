@@ -1,0 +1,181 @@
+// The messages glint's MPI ranks exchange (docs/DISTRIBUTED.md), each a record whose fields are
+// listed once, by name (app/record.h): a frame's counters, each rank's figures, a tradeoff run's
+// figures, and a frame's pixels, layer by layer. tests/record_test.cpp round-trips them all.
+#pragma once
+
+#include "app/record.h"
+
+#include "trace/image_metrics.h"
+#include "trace/primary_hits.h"
+#include "trace/render_result.h"
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace glint {
+
+template <> struct RecordFields<RayCounts> {
+    template <class R, class V> static void visit(R& r, V&& v) {
+        v("primary", r.primary), v("shadow", r.shadow), v("reflection", r.reflection);
+        v("transmission", r.transmission);
+    }
+};
+
+template <> struct RecordFields<PrimaryStats> {
+    template <class R, class V> static void visit(R& r, V&& v) {
+        v("exact_intersections", r.exact_intersections), v("fallbacks", r.fallbacks);
+        v("corrected", r.corrected), v("edges", r.edges), v("checked", r.checked);
+        v("tests", r.tests), v("traced", r.traced);
+    }
+};
+
+template <> struct RecordFields<PhaseTimes> {
+    template <class R, class V> static void visit(R& r, V&& v) {
+        v("prepare", r.prepare), v("context", r.context), v("compile", r.compile);
+        v("upload", r.upload), v("raster", r.raster), v("primary", r.primary);
+        v("shading", r.shading);
+    }
+};
+
+template <> struct RecordFields<ImageDifference> {
+    template <class R, class V> static void visit(R& r, V&& v) {
+        v("psnr_db", r.psnr_db), v("max_abs_error", r.max_abs_error);
+        v("fraction_over_one", r.fraction_over_one), v("pixels_over_one", r.pixels_over_one);
+        v("fraction_over_two", r.fraction_over_two);
+        v("rmse", r.rmse), v("max_radiance_error", r.max_radiance_error);
+    }
+};
+
+// A frame's counters, summed over ranks (each rank counts its own tiles' rays and resolves).
+struct FrameCounters {
+    RayCounts rays;
+    PrimaryStats primary;
+};
+template <> struct RecordFields<FrameCounters> {
+    template <class R, class V> static void visit(R& r, V&& v) {
+        v("rays", r.rays), v("primary", r.primary);
+    }
+};
+
+// What each rank did for one frame, gathered on rank 0 for the report.
+struct RankFigures {
+    double load = 0, prepare = 0; // scene load and World (structures), seconds
+    double gl = 0;                // GL context, shaders, upload, item buffer
+    double trace = 0;             // primary hits and shading, exchanges excluded
+    double exchange = 0;          // pixels exchanged after each pass
+    std::uint64_t tiles = 0;      // tiles traced (all passes)
+    std::uint64_t rays = 0;       // rays cast
+};
+template <> struct RecordFields<RankFigures> {
+    template <class R, class V> static void visit(R& r, V&& v) {
+        v("load", r.load), v("prepare", r.prepare), v("gl", r.gl), v("trace", r.trace);
+        v("exchange", r.exchange), v("tiles", r.tiles), v("rays", r.rays);
+    }
+};
+
+// What `glint tradeoff` measured of one setting on a rank, sent to rank 0 for the CSV.
+struct RunFigures {
+    PhaseTimes times;
+    RayCounts rays;
+    ImageDifference diff{};
+    std::optional<double> agreement; // against the reference's ids
+    int bound_max = 0;               // the cut-off bound (trace/cutoff.h)
+    std::uint64_t bound_pixels_over_one = 0;
+    double largest_omitted_weight = 0;
+    std::optional<bool> bound_held;
+    std::optional<std::uint64_t> refined;
+    std::uint64_t pixels = 0;
+};
+template <> struct RecordFields<RunFigures> {
+    template <class R, class V> static void visit(R& r, V&& v) {
+        v("times", r.times), v("rays", r.rays), v("diff", r.diff), v("agreement", r.agreement);
+        v("bound_max", r.bound_max), v("bound_pixels_over_one", r.bound_pixels_over_one);
+        v("largest_omitted_weight", r.largest_omitted_weight), v("bound_held", r.bound_held);
+        v("refined", r.refined), v("pixels", r.pixels);
+    }
+};
+
+// A frame's pixels after a pass, as layers: each pixel sends the layers its frame keeps (every
+// rank's frame keeps the same), each a record.
+struct PixelColour {
+    float r = 0, g = 0, b = 0;
+};
+template <> struct RecordFields<PixelColour> {
+    template <class R, class V> static void visit(R& p, V&& v) { v("r", p.r), v("g", p.g), v("b", p.b); }
+};
+struct PixelFacts {
+    PixelColour radiance;
+    float omitted_weight = 0;
+    std::uint32_t id = 0;
+};
+template <> struct RecordFields<PixelFacts> {
+    template <class R, class V> static void visit(R& p, V&& v) {
+        v("radiance", p.radiance), v("omitted_weight", p.omitted_weight), v("id", p.id);
+    }
+};
+struct PixelAov {
+    float depth = 0;
+    PixelColour normal; // x, y, z as r, g, b
+    std::uint32_t id = 0;
+};
+template <> struct RecordFields<PixelAov> {
+    template <class R, class V> static void visit(R& p, V&& v) {
+        v("depth", p.depth), v("normal", p.normal), v("id", p.id);
+    }
+};
+struct PixelPathKey {
+    std::uint64_t key = 0;
+};
+template <> struct RecordFields<PixelPathKey> {
+    template <class R, class V> static void visit(R& p, V&& v) { v("key", p.key); }
+};
+
+inline PixelColour colour_at(const FloatImage& image, std::size_t i) {
+    const float* c = image.pixel(i);
+    return {c[0], c[1], c[2]};
+}
+inline void set_colour(FloatImage& image, std::size_t i, const PixelColour& c) {
+    float* p = image.pixel(i);
+    p[0] = c.r, p[1] = c.g, p[2] = c.b;
+}
+
+// Pixel i of `result` (and of `keys`, where given), each layer the frame keeps.
+inline void pack_pixel(const RenderResult& result, const std::vector<std::uint64_t>* keys,
+                       std::size_t i, std::vector<char>& out) {
+    pack(PixelFacts{colour_at(result.radiance, i), result.omitted_weight[i], result.ids[i]}, out);
+    if (!result.clamped.empty()) pack(colour_at(result.clamped, i), out);
+    if (!result.aovs.empty()) {
+        const float* n = &result.aovs.normal[3 * i];
+        pack(PixelAov{result.aovs.depth[i], {n[0], n[1], n[2]}, result.aovs.id[i]}, out);
+    }
+    if (keys) pack(PixelPathKey{(*keys)[i]}, out);
+}
+
+// Reads back what pack_pixel wrote into pixel i of `result` (and `keys`).
+inline void unpack_pixel(RenderResult& result, std::vector<std::uint64_t>* keys, std::size_t i,
+                         const char*& at, const char* end) {
+    PixelFacts facts;
+    unpack(facts, at, end);
+    set_colour(result.radiance, i, facts.radiance);
+    result.omitted_weight[i] = facts.omitted_weight, result.ids[i] = facts.id;
+    if (!result.clamped.empty()) {
+        PixelColour clamped;
+        unpack(clamped, at, end);
+        set_colour(result.clamped, i, clamped);
+    }
+    if (!result.aovs.empty()) {
+        PixelAov aov;
+        unpack(aov, at, end);
+        result.aovs.depth[i] = aov.depth, result.aovs.id[i] = aov.id;
+        float* n = &result.aovs.normal[3 * i];
+        n[0] = aov.normal.r, n[1] = aov.normal.g, n[2] = aov.normal.b;
+    }
+    if (keys) {
+        PixelPathKey key;
+        unpack(key, at, end);
+        (*keys)[i] = key.key;
+    }
+}
+
+} // namespace glint
