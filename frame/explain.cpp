@@ -107,8 +107,8 @@ std::string counts(const RayCounts& r) {
            " transmission";
 }
 
-// One ray's paragraph (40 lines: the lecture's steps in their order, ray → hit → object space →
-// normals → lights → children → R_p).
+// One ray's paragraph, in one body: the lecture's steps in their order, ray → hit → object
+// space → normals → lights → children → R_p.
 void write_ray(std::string& out, const Facts& facts, const PixelExplanation& e, std::size_t i) {
     const RecordedRay& r = e.rays[i];
     const std::string indent(static_cast<std::size_t>(2 * r.depth), ' ');

@@ -389,7 +389,7 @@ void Preview::draw_overlay() {
     }
 }
 
-// The panel (80 lines: three sections, each read top to bottom as it appears on screen):
+// The panel, in one body of three sections, each read top to bottom as it appears on screen:
 // the settings as controls, the frame's figures, and the explained pixel.
 void Preview::draw_panel() {
     const ImVec2 display = ImGui::GetIO().DisplaySize;
@@ -404,18 +404,18 @@ void Preview::draw_panel() {
             if (auto v = enum_combo("raster", frame_.raster)) set("raster", *v);
             if (auto v = enum_combo("resolve", frame_.resolve)) set("resolve", *v);
             int tess = frame_.tessellation;
-            if (ImGui::SliderInt("tessellation", &tess, kMinTessellation, 256, "%d",
+            if (ImGui::SliderInt("tessellation", &tess, kMinTessellation, kMaxTessellation, "%d",
                                  ImGuiSliderFlags_Logarithmic))
                 set("tess", std::to_string(tess));
         }
         int depth = render.max_depth;
-        if (ImGui::SliderInt("depth", &depth, 0, 16)) set("depth", std::to_string(depth));
+        if (ImGui::SliderInt("depth", &depth, 0, kMaxDepth)) set("depth", std::to_string(depth));
         float cutoff = render.min_reflectivity;
         if (ImGui::SliderFloat("cut-off", &cutoff, 0.0f, 1.0f, "%.4f",
                                ImGuiSliderFlags_Logarithmic))
             set("cutoff", std::to_string(cutoff));
         int samples = render.samples;
-        if (ImGui::SliderInt("samples (N×N)", &samples, 1, 8))
+        if (ImGui::SliderInt("samples (N×N)", &samples, 1, kMaxSamples))
             set("samples", std::to_string(samples));
         if (render.samples > 1)
             if (auto v = enum_combo("antialiasing", render.antialias)) set("aa", *v);
@@ -495,51 +495,38 @@ void Preview::on_key(int key) {
         dirty_ = true;
         return;
     case GLFW_KEY_V:
-        view_ = static_cast<View>((static_cast<int>(view_) + 1) % kViewCount);
-        break;
+        return set("view", std::string(name_of(static_cast<View>((static_cast<int>(view_) + 1) %
+                                                                   kViewCount))));
     case GLFW_KEY_LEFT_BRACKET:
-    case GLFW_KEY_RIGHT_BRACKET:
-        scene_.render.max_depth = std::clamp(
-            scene_.render.max_depth + (key == GLFW_KEY_RIGHT_BRACKET ? 1 : -1), 0, kMaxDepth);
-        dirty_ = true;
-        return;
+    case GLFW_KEY_RIGHT_BRACKET: // within the CLI's limits, as every setting: set() holds them
+        return set("depth", std::to_string(std::clamp(
+                                scene_.render.max_depth + (key == GLFW_KEY_RIGHT_BRACKET ? 1 : -1),
+                                0, kMaxDepth)));
     case GLFW_KEY_COMMA:
     case GLFW_KEY_PERIOD: { // halving from 1e-4 reaches 0, doubling from 0 starts at 1e-4
-        float& cutoff = scene_.render.min_reflectivity;
-        cutoff = key == GLFW_KEY_PERIOD ? std::min(1.0f, std::max(cutoff * 2, 1e-4f))
-                                        : (cutoff / 2 < 1e-4f ? 0.0f : cutoff / 2);
-        dirty_ = true;
-        return;
+        const float cutoff = scene_.render.min_reflectivity;
+        return set("cutoff", std::to_string(key == GLFW_KEY_PERIOD
+                                                 ? std::min(1.0f, std::max(cutoff * 2, 1e-4f))
+                                                 : (cutoff / 2 < 1e-4f ? 0.0f : cutoff / 2)));
     }
     case GLFW_KEY_MINUS:
     case GLFW_KEY_EQUAL:
-        frame_.tessellation =
-            std::clamp(key == GLFW_KEY_EQUAL ? frame_.tessellation * 2 : frame_.tessellation / 2,
-                       kMinTessellation, kMaxTessellation);
-        upload_needed_ = dirty_ = true;
-        return;
+        return set("tess", std::to_string(std::clamp(key == GLFW_KEY_EQUAL
+                                                         ? frame_.tessellation * 2
+                                                         : frame_.tessellation / 2,
+                                                     kMinTessellation, kMaxTessellation)));
     case GLFW_KEY_M:
-        frame_.raster = static_cast<RasterMode>((static_cast<int>(frame_.raster) + 1) %
-                                                all_values<RasterMode>().size());
-        upload_needed_ = dirty_ = true;
-        return;
+        return set("raster",
+                   std::string(name_of(static_cast<RasterMode>(
+                       (static_cast<int>(frame_.raster) + 1) % all_values<RasterMode>().size()))));
     case GLFW_KEY_E:
-        frame_.resolve = frame_.resolve == Resolve::exact ? Resolve::trust : Resolve::exact;
-        dirty_ = true;
-        return;
+        return set("resolve", frame_.resolve == Resolve::exact ? "trust" : "exact");
     case GLFW_KEY_T:
-        frame_.mode = frame_.mode == Mode::hybrid ? Mode::ray : Mode::hybrid;
-        dirty_ = true;
-        return;
+        return set("mode", frame_.mode == Mode::hybrid ? "ray" : "hybrid");
     default:
         if (key < GLFW_KEY_1 || key >= GLFW_KEY_1 + kViewCount) return;
-        view_ = static_cast<View>(key - GLFW_KEY_1);
+        set("view", std::string(name_of(static_cast<View>(key - GLFW_KEY_1))));
     }
-    // The difference view needs every camera ray cast beside the resolve: only traced for it.
-    if (view_ == View::difference && frame_.mode == Mode::hybrid && job_ &&
-        !job_->compares_with_ray())
-        dirty_ = true;
-    show_base(); // a new view
 }
 
 // A left press and release without moving is a click: the pixel is explained. Moving more than
@@ -775,8 +762,8 @@ void Preview::save_screenshot(const std::filesystem::path& path) {
                 std::string(view_label(view_)).c_str());
 }
 
-// The event loop (65 lines, one body so that pacing, restarts, uploads and the frame log read in
-// the order they happen each frame).
+// The event loop, one body so that pacing, restarts, uploads and the frame log read in the
+// order they happen each frame.
 int Preview::run() {
     GLFWwindow* w = window_.handle();
     if (!options_.scripted()) std::cout << kPreviewKeys << std::flush;

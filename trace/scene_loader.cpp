@@ -382,9 +382,9 @@ class Loader {
         return mesh;
     }
 
-    // One object's keys and the checks between them (65 lines: the keys, their checks against
+    // One object's keys and the checks between them, in one body: the keys, their checks against
     // the shape's traits and the mesh or OBJ parts they make, read top to bottom as in
-    // docs/SCENES.md).
+    // docs/SCENES.md.
     void object(const Node& node, Scene& scene) const {
         expect_object(node, {"name", "shape", "material", "transform", "top_radius", "open",
                              "vertices", "indices", "file"});

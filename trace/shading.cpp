@@ -63,8 +63,9 @@ Real light_through(const World& world, const SurfacePoint& surface, Vec3 light, 
 
 } // namespace
 
-// The lecture's sum, with §11's checker, shadows through glass and transmitted rays (62 lines:
-// the local terms and the two kinds of secondary ray share the weight rule and its counters).
+// The lecture's sum, with §11's checker, shadows through glass and transmitted rays, in one
+// body: the local terms and the two kinds of secondary ray share the weight rule and its
+// counters.
 Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoint& surface,
            int depth, Real weight, RayTree& tree, const Real* known_light) {
     RayCounts& counts = tree.rays;

@@ -26,8 +26,8 @@ struct Builder {
     }
 
     // Builds the subtree of items[begin, end) into nodes[index], `depth` levels below the root.
-    // The binning, the choice of split and the partition stay in one body (71 lines): they share
-    // the bin arrays.
+    // The binning, the choice of split and the partition stay in one body: they share the bin
+    // arrays.
     void build(std::uint32_t index, std::uint32_t begin, std::uint32_t end, int depth) {
         BvhNode& node = nodes[index];
         Bounds box, centroid_box;
