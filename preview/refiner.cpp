@@ -1,12 +1,45 @@
 #include "preview/refiner.h"
 
-#include "trace/sampling.h"
+#include "trace/render.h"
 
 #include <algorithm>
-#include <chrono>
 #include <numeric>
 
 namespace glint {
+
+// The preview's tiles: each pass's tiles on `threads` worker threads started for the pass, taken
+// in the job's order (centre first), each shown as soon as it is traced; no tile is started once
+// `cancel` is set.
+class RefineJob::PreviewSchedule final : public TileSchedule {
+  public:
+    PreviewSchedule(RefineJob& job, const std::atomic<bool>& cancel, int threads)
+        : job_(job), cancel_(cancel), threads_(threads) {}
+
+    bool run(FramePass pass, const RenderResult& result, const TileWork& work) override {
+        std::atomic<std::size_t> next{0};
+        const auto worker = [&] {
+            for (std::size_t k = next++; k < job_.order_.size(); k = next++) {
+                if (cancel_.load(std::memory_order_relaxed)) return;
+                const int index = job_.order_[k];
+                const RayCounts rays = work(job_.tile(index));
+                job_.show_tile(pass, index, result, rays);
+            }
+        };
+        std::vector<std::thread> workers;
+        for (int t = 1; t < threads_; ++t) workers.emplace_back(worker);
+        worker();
+        for (std::thread& w : workers) w.join();
+        return !cancel_.load(std::memory_order_relaxed);
+    }
+    void finish(FramePass pass, RenderResult& result, std::vector<std::uint64_t>*) override {
+        job_.pass_done(pass, result);
+    }
+
+  private:
+    RefineJob& job_;
+    const std::atomic<bool>& cancel_;
+    int threads_;
+};
 
 RefineJob::RefineJob(std::shared_ptr<const World> world, std::shared_ptr<const IdImage> ids,
                      Resolve resolve, bool compare_with_ray)
@@ -26,13 +59,7 @@ RefineJob::RefineJob(std::shared_ptr<const World> world, std::shared_ptr<const I
                      [&](int a, int b) { return distance(a) < distance(b); });
     done_ = std::make_unique<std::atomic<int>[]>(order_.size());
     const RenderSettings& settings = world_->settings();
-    if (settings.samples > 1) {
-        passes_ = 2;
-        if (settings.antialias == Antialias::adaptive) {
-            passes_ = 3; // the rule's spreading (trace/sampling.h, rule 4), after the grids
-            path_keys_.assign(static_cast<std::size_t>(width) * height, 0);
-        }
-    }
+    if (settings.samples > 1) passes_ = settings.antialias == Antialias::adaptive ? 3 : 2;
 }
 
 const Image& RefineJob::traced(View view, int passes) const {
@@ -53,135 +80,100 @@ TileRect RefineJob::tile(int index) const {
     return tile_rect(width(), height(), index);
 }
 
-void RefineJob::work(const std::atomic<bool>& cancel) {
-    const int tiles = tile_count(), tile_passes = std::min(passes_, 2);
-    for (int k = next_++; k < tile_passes * tiles && !cancel.load(std::memory_order_relaxed);
-         k = next_++) {
-        const int index = order_[static_cast<std::size_t>(k % tiles)];
-        if (k < tiles) {
-            trace_tile(tile(index));
-        } else {
-            if (!wait_for_first_pass(cancel)) return;
-            refine_tile(tile(index));
-        }
-        done_[index].fetch_add(1, std::memory_order_acq_rel);
-        int done = tiles_done_.fetch_add(1, std::memory_order_acq_rel) + 1;
-        if (done == tiles && passes_ > 1) plan_refinement();
-        if (done == 2 * tiles && passes_ > 2) {
-            spread(cancel); // by this worker alone, then every tile is done a third time
-            for (int t = 0; t < tiles; ++t) done_[t].fetch_add(1, std::memory_order_acq_rel);
-            done = tiles_done_.fetch_add(tiles, std::memory_order_acq_rel) + tiles;
-        }
-        if (done == passes_ * tiles) {
-            const std::lock_guard lock(totals_mutex_);
-            seconds_ = watch_.seconds();
-        }
+Image& RefineJob::image_of(FramePass pass) {
+    switch (pass) {
+    case FramePass::centres:
+        return final_;
+    case FramePass::grids:
+        return sampled_;
+    case FramePass::spread:
+        break;
     }
+    return spread_;
 }
 
-void RefineJob::plan_refinement() {
-    const RenderSettings& settings = world_->settings();
-    if (settings.antialias == Antialias::adaptive)
-        refine_ = adaptive_refinement(final_, path_keys_, nullptr, settings.samples,
-                                      settings.aa_threshold);
-    else
-        refine_.assign(static_cast<std::size_t>(width()) * height(), 1);
-    sampled_ = final_;
+void RefineJob::run(const std::atomic<bool>& cancel, int threads) {
+    PreviewSchedule schedule(*this, cancel, std::max(1, threads));
+    PrimaryStats stats;
+    PhaseTimes unused;
+    FrameRequest request;
+    request.centres_first = true; // a first look before the grids
+    request.observer = this;
+    const RenderResult result =
+        run_frame(*world_, {ids_.get(), resolve_}, stats, schedule, unused, request);
+    if (cancel.load(std::memory_order_relaxed)) return;
+    refined_map_ = result.refined;
     {
         const std::lock_guard lock(totals_mutex_);
-        refined_ = static_cast<std::uint64_t>(std::count(refine_.begin(), refine_.end(), 1));
+        stats_ = stats;
+        if (!result.refined.empty())
+            refined_ = static_cast<std::uint64_t>(
+                std::count(result.refined.begin(), result.refined.end(), 1));
+        seconds_ = watch_.seconds();
     }
-    planned_.store(true, std::memory_order_release);
-}
-
-bool RefineJob::wait_for_first_pass(const std::atomic<bool>& cancel) {
-    while (!planned_.load(std::memory_order_acquire)) {
-        if (cancel.load(std::memory_order_relaxed)) return false;
-        std::this_thread::sleep_for(std::chrono::milliseconds(1)); // at most one tile's wait
+    if (passes_ > 2) { // the spreading's rounds are shown together, once they are done
+        for (int t = 0; t < tile_count(); ++t) done_[t].fetch_add(1, std::memory_order_acq_rel);
+        tiles_done_.fetch_add(tile_count(), std::memory_order_acq_rel);
     }
-    return true;
+    complete_.store(true, std::memory_order_release);
 }
 
-// The second pass: the planned pixels' N×N grids, by camera ray (exact resolve would give the
-// same hits; the preview keeps one item buffer, of the pixel centres).
-void RefineJob::refine_tile(const TileRect& rect) {
-    std::vector<Hit> hits;
-    RayCounts counts;
-    for (int y = rect.y0; y < rect.y1; ++y)
-        for (int x = rect.x0; x < rect.x1; ++x)
-            if (refine_[static_cast<std::size_t>(y) * width() + x])
-                counts += grid_into(sampled_, x, y, hits);
-    const std::lock_guard lock(totals_mutex_);
-    rays_ += counts;
+void RefineJob::pixel(int x, int y, const Ray& ray, const PixelSample& sample) {
+    const World& world = *world_;
+    const Hit& hit = sample.hit;
+    const Rgb depth = reflection_colour(sample.depth, world.settings().max_depth);
+    std::copy(depth.begin(), depth.end(), reflections_.pixel(x, y));
+    const Rgb normal = hit.found() ? normal_colour(glm::vec3(sample.normal)) : Rgb{0, 0, 0};
+    std::copy(normal.begin(), normal.end(), normals_.pixel(x, y));
+    const Hit by_ray = compare_with_ray_ ? world.intersect(ray) : hit;
+    const bool differs =
+        by_ray.found() != hit.found() || (hit.found() && by_ray.object != hit.object);
+    if (differs) differing_.fetch_add(1, std::memory_order_relaxed);
+    std::uint8_t shown[3];
+    store_colour(sample.colour, shown);
+    const Rgb diff = difference_colour(shown, differs);
+    std::copy(diff.begin(), diff.end(), difference_.pixel(x, y));
 }
 
-// Rule 4 of the adaptive rule, round by round as trace_frame applies it, into a copy of the
-// second pass's image.
-void RefineJob::spread(const std::atomic<bool>& cancel) {
-    spread_ = sampled_;
-    std::vector<Hit> hits;
-    RayCounts counts;
-    const std::size_t refined =
-        spread_refinement(final_, spread_, refine_, world_->settings().aa_threshold,
-                          [&](const std::vector<std::uint8_t>& next) {
-                              for (std::size_t i = 0; i < next.size(); ++i)
-                                  if (next[i])
-                                      counts += grid_into(spread_, static_cast<int>(i % width()),
-                                                          static_cast<int>(i / width()), hits);
-                              return !cancel.load(std::memory_order_relaxed);
-                          });
-    const std::lock_guard lock(totals_mutex_);
-    rays_ += counts;
-    refined_ += refined;
+void RefineJob::show_tile(FramePass pass, int index, const RenderResult& result,
+                          const RayCounts& rays) {
+    Image& image = image_of(pass);
+    const TileRect r = tile(index);
+    const FloatImage& display = result.display();
+    for (int y = r.y0; y < r.y1; ++y)
+        for (int x = r.x0; x < r.x1; ++x) {
+            const float* c = display.pixel(static_cast<std::size_t>(y) * width() + x);
+            std::uint8_t* p = image.pixel(x, y);
+            for (int k = 0; k < 3; ++k) p[k] = to_byte(c[k]);
+        }
+    {
+        const std::lock_guard lock(totals_mutex_);
+        rays_ += rays;
+    }
+    if (pass == FramePass::spread) return; // shown with the last round (run)
+    done_[index].fetch_add(1, std::memory_order_acq_rel);
+    tiles_done_.fetch_add(1, std::memory_order_acq_rel);
 }
 
-// Pixel (x, y)'s grid mean into `image`, its samples cast as rays; returns their ray counts.
-RayCounts RefineJob::grid_into(Image& image, int x, int y, std::vector<Hit>& hits) const {
-    PrimaryStats unused; // counted only when resolving ids
-    const GridPixel pixel = trace_grid(*world_, {}, x, y, hits, unused);
-    store_colour(pixel.mean, image.pixel(x, y));
-    return pixel.rays;
+void RefineJob::pass_done(FramePass pass, const RenderResult& result) {
+    if (pass == FramePass::centres && passes_ > 1) {
+        sampled_ = final_;
+        if (passes_ == 2) { // uniform: every pixel's grid
+            const std::lock_guard lock(totals_mutex_);
+            refined_ = static_cast<std::uint64_t>(width()) * height();
+        }
+    }
+    if (pass == FramePass::grids && passes_ > 2) {
+        spread_ = sampled_;
+        const std::lock_guard lock(totals_mutex_); // adaptive: the rule's pixels, before spreading
+        refined_ = static_cast<std::uint64_t>(
+            std::count(result.refined.begin(), result.refined.end(), 1));
+    }
 }
 
 std::uint64_t RefineJob::refined_pixels() const {
     const std::lock_guard lock(totals_mutex_);
     return refined_;
-}
-
-// Each pixel through trace/pixel.h's path, as `glint render` traces it; the other views show
-// what that path computed, and only the difference view casts a ray of its own.
-void RefineJob::trace_tile(const TileRect& rect) {
-    const World& world = *world_;
-    const PrimarySource source{ids_.get(), resolve_};
-    const int max_depth = world.settings().max_depth;
-    RayCounts counts;
-    PrimaryStats stats;
-    std::uint64_t differing = 0;
-    for (int y = rect.y0; y < rect.y1; ++y) {
-        for (int x = rect.x0; x < rect.x1; ++x) {
-            const PixelSample sample = trace_pixel(world, source, x, y, stats);
-            const Hit& hit = sample.hit;
-            std::uint8_t* p = final_.pixel(x, y);
-            store_colour(sample.colour, p);
-            const Rgb depth = reflection_colour(sample.depth, max_depth);
-            std::copy(depth.begin(), depth.end(), reflections_.pixel(x, y));
-            const Rgb normal = hit.found() ? normal_colour(glm::vec3(sample.normal)) : Rgb{0, 0, 0};
-            std::copy(normal.begin(), normal.end(), normals_.pixel(x, y));
-            const Hit by_ray = compare_with_ray_ ? world.intersect(world.camera().ray(x, y)) : hit;
-            const bool differs =
-                by_ray.found() != hit.found() || (hit.found() && by_ray.object != hit.object);
-            differing += differs;
-            const Rgb diff = difference_colour(p, differs);
-            std::copy(diff.begin(), diff.end(), difference_.pixel(x, y));
-            counts += sample.rays;
-            if (!path_keys_.empty())
-                path_keys_[static_cast<std::size_t>(y) * width() + x] = sample.path_key;
-        }
-    }
-    const std::lock_guard lock(totals_mutex_);
-    rays_ += counts;
-    stats_ += stats;
-    differing_ += differing;
 }
 
 RayCounts RefineJob::rays() const {
@@ -195,8 +187,7 @@ PrimaryStats RefineJob::primary_stats() const {
 }
 
 std::uint64_t RefineJob::differing_pixels() const {
-    const std::lock_guard lock(totals_mutex_);
-    return differing_;
+    return differing_.load(std::memory_order_relaxed);
 }
 
 double RefineJob::seconds() const {
@@ -212,14 +203,12 @@ void Refiner::start(std::shared_ptr<RefineJob> job) {
     stop();
     job_ = std::move(job);
     cancel_ = false;
-    for (int i = 0; i < threads_; ++i)
-        workers_.emplace_back([this, job = job_] { job->work(cancel_); });
+    frame_ = std::thread([this, job = job_] { job->run(cancel_, threads_); });
 }
 
 void Refiner::stop() {
     cancel_ = true;
-    for (std::thread& worker : workers_) worker.join();
-    workers_.clear();
+    if (frame_.joinable()) frame_.join();
     job_.reset();
 }
 

@@ -1,16 +1,15 @@
-// Progressive tracing for the preview: one job per camera and settings, traced in 32×32 tiles
-// from the image centre outwards by worker threads, while the UI thread shows each tile as it
-// finishes. A job is cancelled (between tiles) as soon as the camera moves. Each traced pixel is
-// computed exactly as `glint render` computes it, so a finished job is the headless image.
-// With the scene's samples N > 1, a second pass follows the first (one sample a pixel, from the
-// same item buffer): every pixel's N×N grid, or with adaptive antialiasing the pixels the rule
-// refines from the first pass (trace/sampling.h), the samples' primary hits cast as rays; with
-// adaptive, a third pass (one worker) spreads the refinement as the rule's last part says.
+// Progressive tracing for the preview: one job per camera and settings, whose frame runs through
+// trace/passes.h's run_frame like every render, its tiles handed out from the image centre
+// outwards to worker threads (PreviewSchedule below), while the UI thread shows each tile as it
+// finishes. A job is cancelled (between tiles) as soon as the camera moves. A finished job is
+// the headless image. With the scene's samples N > 1 it shows the passes one after another: the
+// pixel centres first (a first look, which uniform antialiasing's render skips), then the grids,
+// then with adaptive antialiasing the spreading, shown once its rounds are done.
 #pragma once
 
 #include "preview/views.h"
 
-#include "trace/render.h"
+#include "trace/passes.h"
 #include "trace/stopwatch.h"
 
 #include <atomic>
@@ -21,7 +20,7 @@
 
 namespace glint {
 
-class RefineJob {
+class RefineJob final : private CentreObserver {
   public:
     // `ids`: the item buffer for hybrid resolve; null traces every primary ray (ray mode).
     // `compare_with_ray`: also cast every camera ray in hybrid mode, for the difference view
@@ -34,9 +33,8 @@ class RefineJob {
     int height() const { return final_.height; }
 
     // The traced image of a view (is_traced(view)) as `passes` passes leave it (default: all);
-    // read a tile's pixels only once tile_passes says that many are done. Only the final view
-    // changes in the second pass, which writes a copy of the first's image, so a tile shown
-    // after the first pass is never written again.
+    // read a tile's pixels only once tile_passes says that many are done. Each pass writes its
+    // own copy of the final view, so a tile shown after one pass is never written again.
     const Image& traced(View view, int passes = 3) const;
     int tile_count() const { return static_cast<int>(order_.size()); } // per pass
     TileRect tile(int index) const;                                    // in row-major tile order
@@ -45,57 +43,57 @@ class RefineJob {
     int tile_passes(int index) const { return done_[index].load(std::memory_order_acquire); }
     bool tile_done(int index) const { return tile_passes(index) > 0; }
     int tiles_done() const { return tiles_done_.load(std::memory_order_acquire); } // all passes
-    bool finished() const { return tiles_done() == passes_ * tile_count(); }
-    // Pixels the second pass refines (all with uniform antialiasing); 0 before it starts.
+    // Every pass of every tile done, and the frame's totals stored.
+    bool finished() const { return complete_.load(std::memory_order_acquire); }
+    // Pixels the grids refine (all with uniform antialiasing); 0 before they start.
     std::uint64_t refined_pixels() const;
     // Whether pixel (x, y) took its grid (adaptive antialiasing, all passes); read once finished.
     bool refined(int x, int y) const {
-        return !refine_.empty() && refine_[static_cast<std::size_t>(y) * width() + x] != 0;
+        return !refined_map_.empty() && refined_map_[static_cast<std::size_t>(y) * width() + x];
     }
 
-    // Traces tiles until none is left or `cancel` is set; several threads may call it at once.
-    void work(const std::atomic<bool>& cancel);
+    // Traces the frame on `threads` workers until it is done or `cancel` is set.
+    void run(const std::atomic<bool>& cancel, int threads);
 
     // Totals over the tiles done so far (read them once finished for the whole image).
     RayCounts rays() const;
-    PrimaryStats primary_stats() const;
+    PrimaryStats primary_stats() const; // once finished
     std::uint64_t differing_pixels() const; // hybrid and ray primary hits name other objects
     double seconds() const;                 // since the job was made, to its last tile
 
   private:
-    void trace_tile(const TileRect& rect);
-    void refine_tile(const TileRect& rect);
-    // After the first pass's last tile: which pixels the second pass refines.
-    void plan_refinement();
-    void spread(const std::atomic<bool>& cancel);
-    RayCounts grid_into(Image& image, int x, int y, std::vector<Hit>& hits) const;
-    // Until the first pass is done and planned; false if cancelled first.
-    bool wait_for_first_pass(const std::atomic<bool>& cancel);
+    class PreviewSchedule;
+    // The centres pass's pixels into the other views.
+    void pixel(int x, int y, const Ray& ray, const PixelSample& sample) override;
+    // Tile `index` of `pass` is traced: its bytes into that pass's image, then marked done.
+    void show_tile(FramePass pass, int index, const RenderResult& result, const RayCounts& rays);
+    // A pass's last tile is done: the next pass starts from a copy of its image.
+    void pass_done(FramePass pass, const RenderResult& result);
+    Image& image_of(FramePass pass);
 
     std::shared_ptr<const World> world_;
     std::shared_ptr<const IdImage> ids_;
     Resolve resolve_;
     bool compare_with_ray_;
     Image final_, normals_, difference_, reflections_;
-    Image sampled_; // the final view after the second pass
-    Image spread_;  // and after adaptive's spreading (the third)
+    Image sampled_; // the final view after the grids
+    Image spread_;  // and after adaptive's spreading
     std::vector<int> order_; // tile indices, nearest the image centre first
     int passes_ = 1;
     std::unique_ptr<std::atomic<int>[]> done_;
-    std::vector<std::uint64_t> path_keys_; // first pass, for adaptive antialiasing
-    std::vector<std::uint8_t> refine_;     // the second pass's pixels
-    std::atomic<bool> planned_{false};
-    std::uint64_t refined_ = 0;
-    std::atomic<int> next_{0}, tiles_done_{0};
+    std::vector<std::uint8_t> refined_map_; // once finished
+    std::atomic<int> tiles_done_{0};
+    std::atomic<bool> complete_{false};
+    std::atomic<std::uint64_t> differing_{0};
     Stopwatch watch_; // from the job's making
     mutable std::mutex totals_mutex_;
     RayCounts rays_;
     PrimaryStats stats_;
-    std::uint64_t differing_ = 0;
+    std::uint64_t refined_ = 0;
     double seconds_ = 0;
 };
 
-// Runs one job at a time on `threads` worker threads.
+// Runs one job at a time, its frame on a thread of its own and its tiles on `threads` workers.
 class Refiner {
   public:
     explicit Refiner(int threads);
@@ -112,7 +110,7 @@ class Refiner {
   private:
     int threads_;
     std::atomic<bool> cancel_{false};
-    std::vector<std::thread> workers_;
+    std::thread frame_;
     std::shared_ptr<RefineJob> job_;
 };
 

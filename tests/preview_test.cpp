@@ -136,7 +136,7 @@ TEST(Refiner, TilesCoverTheImageOnceAndACancelledJobTracesNothing) {
     }
     EXPECT_EQ(std::set<int>(covered.begin(), covered.end()), std::set<int>{1});
     const std::atomic<bool> cancelled{true};
-    job.work(cancelled);
+    job.run(cancelled, 2);
     EXPECT_EQ(job.tiles_done(), 0);
     EXPECT_FALSE(job.finished());
 }

@@ -93,7 +93,9 @@ TEST(Render, ProgressCountsEveryTile) {
     const World world(default_scene(100, 70));
     std::atomic<int> done{0};
     render(world, {0, &done});
-    EXPECT_EQ(done.load(), 2 * tile_count(100, 70)); // primary hits, then shading
+    // One pass (trace/passes.h): each tile's primary hits and shading together.
+    EXPECT_EQ(done.load(), tile_count(100, 70));
+    EXPECT_EQ(progress_steps(world.settings(), 100, 70), tile_count(100, 70));
     EXPECT_EQ(tile_count(100, 70), 4 * 3);
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "trace/image_metrics.h"
+#include "trace/passes.h"
 #include "trace/pixel.h"
 #include "trace/render_result.h"
 
@@ -33,6 +34,14 @@ inline void store_aovs(RenderResult& result, std::size_t i, const Hit& hit, Vec3
 // the AOVs where asked for.
 RenderResult blank_result(const PinholeCamera& camera, int samples, bool aovs);
 
+// Shades tile r's pixels from their primary hits (`primary`: the whole image's) into `result`:
+// colour, cut-off weight, id, AOVs where kept, and with `path_keys` each pixel's
+// RayTree::path_key; shows each to `observer` where given. Returns the rays cast. The pixels go
+// in blocks, so that their shadow rays go in packets of neighbours (TileLighting).
+RayCounts shade_tile(const World& world, const std::vector<Hit>& primary, const TileRect& r,
+                     RenderResult& result, std::vector<std::uint64_t>* path_keys,
+                     CentreObserver* observer = nullptr);
+
 // Shades the pixels whose primary hits are given (row-major, top row first), each through
 // trace/pixel.h's path, one sample at each pixel's centre; with `path_keys`, also stores each
 // pixel's RayTree::path_key there.
@@ -40,16 +49,13 @@ RenderResult shade_image(const World& world, const std::vector<Hit>& primary,
                          const TileProgress& progress = {},
                          std::vector<std::uint64_t>* path_keys = nullptr);
 
-// The tracer's part of every frame: primary hits from `source`, then shading, each phase timed
-// into `times` (frame/frame.h draws the item buffer before it in hybrid mode), with the scene's
-// antialiasing (trace/sampling.h): N = 1, the pixel centres; uniform, every pixel's N×N grid
-// (hybrid: source.sample_ids); adaptive, the centres, then the grid where the rule says.
+// The tracer's part of every frame on this process's threads (or its share of tiles across
+// processes, progress.exchange): trace/passes.h's run_frame with a ThreadSchedule, primary hits
+// from `source` (frame/frame.h draws the item buffer before it in hybrid mode), each phase timed
+// into `times`.
 // With `aovs`, also keeps each pixel centre's primary hit (RenderResult::aovs).
 RenderResult trace_frame(const World& world, const PrimarySource& source, PrimaryStats& stats,
                          const TileProgress& progress, PhaseTimes& times, bool aovs = false);
-
-// How many steps TileProgress::tiles_done counts to in a trace_frame of this size.
-int progress_steps(const RenderSettings& settings, int width, int height);
 
 // Ray mode in one call: primary hits by ray casting, then shading, with the scene's samples.
 RenderResult render(const World& world, const TileProgress& progress = {});

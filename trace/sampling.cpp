@@ -1,12 +1,9 @@
 #include "trace/sampling.h"
 
-#include "trace/render.h"
-#include "trace/stopwatch.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <mutex>
 
 namespace glint {
 inline namespace GLINT_PRECISION {
@@ -36,33 +33,6 @@ bool mixed_ids(const IdImage& samples, int x, int y, int n) {
             if (row[a] != first) return true;
     }
     return false;
-}
-
-// The bytes of the pixels marked in `which`, from `colour` into `bytes`.
-void copy_bytes(const FloatImage& colour, const std::vector<std::uint8_t>& which, Image& bytes) {
-    for (std::size_t i = 0; i < which.size(); ++i)
-        if (which[i])
-            for (int c = 0; c < 3; ++c) bytes.rgb[3 * i + c] = to_byte(colour.rgb[3 * i + c]);
-}
-
-// The primary hits of the tile's pixel centres (§2's ray, whatever the grid) into result.aovs:
-// from the centres' item buffer where the source has one, else by camera ray. Returns the rays.
-RayCounts centre_aovs(const World& world, const PrimarySource& source, int x0, int y0, int x1,
-                      int y1, RenderResult& result) {
-    const PinholeCamera& camera = world.camera();
-    const PrimarySource centres{source.ids, source.resolve};
-    PrimaryStats unused; // the AOVs' own rays: not the frame's resolve figures
-    RayCounts counts;
-    for (int y = y0; y < y1; ++y) {
-        for (int x = x0; x < x1; ++x) {
-            const Ray ray = camera.ray(x, y);
-            const Hit hit = primary_hit(world, centres, x, y, ray, unused);
-            const Vec3 normal = hit.found() ? world.surface(ray, hit).shading : Vec3(0);
-            store_aovs(result, static_cast<std::size_t>(y) * camera.width() + x, hit, normal);
-            ++counts.primary;
-        }
-    }
-    return counts;
 }
 
 } // namespace
@@ -155,85 +125,6 @@ GridPixel trace_grid(const World& world, const PrimarySource& source, int x, int
     hits.resize(n * n);
     grid_hits(world, source, x, y, hits.data(), stats);
     return shade_grid(world, x, y, hits.data());
-}
-
-void supersample(const World& world, const PrimarySource& source,
-                 const std::vector<std::uint8_t>* only, RenderResult& result, PrimaryStats& stats,
-                 const TileProgress& progress, PhaseTimes& times) {
-    const PinholeCamera& camera = world.camera();
-    const int width = camera.width(), n = world.settings().samples;
-    const std::size_t grid = static_cast<std::size_t>(n) * n;
-    std::mutex mutex;
-    double primary_seconds = 0, shading_seconds = 0; // summed over tiles, all threads
-    const Stopwatch wall;
-    for_each_tile(width, camera.height(), progress, [&](int x0, int y0, int x1, int y1) {
-        Stopwatch watch;
-        PrimaryStats local_stats;
-        std::vector<std::size_t> pixels; // the tile's pixels to sample, in row order
-        std::vector<Hit> hits;           // their grids' primary hits, one grid after another
-        for (int y = y0; y < y1; ++y) {
-            for (int x = x0; x < x1; ++x) {
-                const std::size_t i = static_cast<std::size_t>(y) * width + x;
-                if (only && !(*only)[i]) continue;
-                pixels.push_back(i);
-                hits.resize(hits.size() + grid);
-                grid_hits(world, source, x, y, &hits[hits.size() - grid], local_stats);
-            }
-        }
-        RayCounts counts;
-        if (!only && !result.aovs.empty()) counts += centre_aovs(world, source, x0, y0, x1, y1, result);
-        const double primary = watch.lap();
-        for (std::size_t k = 0; k < pixels.size(); ++k) {
-            const std::size_t i = pixels[k];
-            const int x = static_cast<int>(i % width), y = static_cast<int>(i / width);
-            const GridPixel pixel = shade_grid(world, x, y, &hits[k * grid]);
-            store_pixel(result, i, pixel.radiance, pixel.mean);
-            result.omitted_weight[i] = static_cast<float>(pixel.omitted_weight);
-            if (!only) result.ids[i] = pixel.centre_id;
-            counts += pixel.rays;
-        }
-        const double shading = watch.lap();
-        const std::lock_guard lock(mutex); // integer sums: order does not matter
-        result.rays += counts;
-        stats += local_stats;
-        primary_seconds += primary, shading_seconds += shading;
-        if (progress.tiles_done) progress.tiles_done->fetch_add(1, std::memory_order_relaxed);
-    });
-    times.add_split(wall.seconds(), primary_seconds, shading_seconds);
-}
-
-void render_uniform_grids(const World& world, const PrimarySource& source, PrimaryStats& stats,
-                          const TileProgress& progress, PhaseTimes& times, RenderResult& result) {
-    supersample(world, source, nullptr, result, stats, progress, times);
-}
-
-void refine_adaptively(const World& world, const PrimarySource& source,
-                       const std::vector<std::uint64_t>& path_keys, RenderResult& result,
-                       PrimaryStats& stats, const TileProgress& progress, PhaseTimes& times) {
-    const RenderSettings& settings = world.settings();
-    // The rule reads the display's bytes (DESIGN §11): the first pass's, and after each pass
-    // those of the pixels it refined.
-    const Image first = result.bytes();
-    result.refined = timed(times.shading, [&] {
-        return adaptive_refinement(first, path_keys, source.sample_ids, settings.samples,
-                                   settings.aa_threshold);
-    });
-    supersample(world, source, &result.refined, result, stats, progress, times);
-    if (progress.exchange) progress.exchange->share(result, nullptr);
-    // The rounds' scans count as shading; supersample times its own passes.
-    const double timed_before = times.primary + times.shading;
-    const Stopwatch rounds;
-    Image current = first;
-    copy_bytes(result.display(), result.refined, current);
-    spread_refinement(first, current, result.refined, settings.aa_threshold,
-                      [&](const std::vector<std::uint8_t>& next) {
-                          supersample(world, source, &next, result, stats,
-                                      {progress.threads, nullptr, progress.exchange}, times);
-                          if (progress.exchange) progress.exchange->share(result, nullptr);
-                          copy_bytes(result.display(), next, current);
-                          return true;
-                      });
-    times.shading += rounds.seconds() - (times.primary + times.shading - timed_before);
 }
 
 } // namespace GLINT_PRECISION

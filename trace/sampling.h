@@ -1,6 +1,6 @@
 // Antialiasing (DESIGN §11, docs/ANTIALIASING.md): the N×N grid of samples in a pixel, each
 // through the one pixel path (trace/pixel.h), and the adaptive rule that decides which pixels
-// need the grid.
+// need the grid. trace/passes.h runs them as a frame's passes.
 #pragma once
 
 #include "trace/pixel.h"
@@ -76,30 +76,6 @@ std::size_t spread_refinement(const Image& first, const Image& current,
     }
     return total;
 }
-
-// Replaces, in `result`, each pixel with its N×N grid's mean (n = world.settings().samples;
-// every pixel, or only where `only` is 1), by grid_hits and shade_grid. Ray counts add to
-// result.rays; the pixel's cut-off weight becomes its samples' mean. Where `only` is null and
-// the result keeps AOVs, each pixel centre's primary hit is found too (its camera ray, counted
-// as a primary ray). The primary-hit and shading
-// parts of each tile are timed apart and the pass's wall time shared between times.primary and
-// times.shading in their ratio.
-void supersample(const World& world, const PrimarySource& source,
-                 const std::vector<std::uint8_t>* only, RenderResult& result, PrimaryStats& stats,
-                 const TileProgress& progress, PhaseTimes& times);
-
-// Uniform antialiasing's frame into `result` (trace/render.h's blank_result): every pixel's grid
-// mean (supersample), and as the pixel's id its sample (N/2, N/2)'s object.
-void render_uniform_grids(const World& world, const PrimarySource& source, PrimaryStats& stats,
-                          const TileProgress& progress, PhaseTimes& times, RenderResult& result);
-
-// Adaptive antialiasing after its first pass (`result`, N = 1's image, with its `path_keys`):
-// rules 1 to 3 pick the pixels, supersample redoes them, and rule 4 spreads round by round
-// (those rounds are not counted as progress: how far it spreads is not known beforehand).
-// Leaves the map of refined pixels in result.refined.
-void refine_adaptively(const World& world, const PrimarySource& source,
-                       const std::vector<std::uint64_t>& path_keys, RenderResult& result,
-                       PrimaryStats& stats, const TileProgress& progress, PhaseTimes& times);
 
 } // namespace GLINT_PRECISION
 } // namespace glint

@@ -1,0 +1,190 @@
+#include "trace/passes.h"
+
+#include "trace/render.h"
+#include "trace/sampling.h"
+#include "trace/stopwatch.h"
+
+#include <mutex>
+
+namespace glint {
+inline namespace GLINT_PRECISION {
+
+bool ThreadSchedule::run(FramePass pass, const RenderResult& result, const TileWork& work) {
+    TileProgress progress = progress_;
+    // Spreading's rounds are not counted: how far it spreads is not known beforehand.
+    if (pass == FramePass::spread) progress.tiles_done = nullptr;
+    for_each_tile(result.radiance.width, result.radiance.height, progress,
+                  [&](int x0, int y0, int x1, int y1) { work({x0, y0, x1, y1}); });
+    return true;
+}
+
+void ThreadSchedule::finish(FramePass, RenderResult& result, std::vector<std::uint64_t>* keys) {
+    if (progress_.exchange) progress_.exchange->share(result, keys);
+}
+
+int progress_steps(const RenderSettings& settings, int width, int height) {
+    const bool adaptive = settings.samples > 1 && settings.antialias == Antialias::adaptive;
+    return (adaptive ? 2 : 1) * tile_count(width, height);
+}
+
+namespace {
+
+// What one tile of a pass did: its rays and resolve figures, and the seconds its primary hits
+// and its shading took.
+struct TileFigures {
+    RayCounts rays;
+    PrimaryStats stats;
+    double primary = 0, shading = 0;
+};
+
+// The centres pass on one tile: its primary hits (into `primary`, the whole image's), then its
+// pixels shaded.
+TileFigures centres_tile(const World& world, const PrimarySource& source, const TileRect& r,
+                         std::vector<Hit>& primary, RenderResult& result,
+                         std::vector<std::uint64_t>* keys, CentreObserver* observer) {
+    TileFigures figures;
+    Stopwatch watch;
+    tile_primary_hits(world, source, r.x0, r.y0, r.x1, r.y1, primary, figures.stats);
+    figures.primary = watch.lap();
+    figures.rays = shade_tile(world, primary, r, result, keys, observer);
+    figures.shading = watch.lap();
+    return figures;
+}
+
+// The primary hits of the tile's pixel centres (§2's ray, whatever the grid) into result.aovs:
+// from the centres' item buffer where the source has one, else by camera ray. Returns the rays.
+RayCounts centre_aovs(const World& world, const PrimarySource& source, const TileRect& r,
+                      RenderResult& result) {
+    const PinholeCamera& camera = world.camera();
+    const PrimarySource centres{source.ids, source.resolve};
+    PrimaryStats unused; // the AOVs' own rays: not the frame's resolve figures
+    RayCounts counts;
+    for (int y = r.y0; y < r.y1; ++y) {
+        for (int x = r.x0; x < r.x1; ++x) {
+            const Ray ray = camera.ray(x, y);
+            const Hit hit = primary_hit(world, centres, x, y, ray, unused);
+            const Vec3 normal = hit.found() ? world.surface(ray, hit).shading : Vec3(0);
+            store_aovs(result, static_cast<std::size_t>(y) * camera.width() + x, hit, normal);
+            ++counts.primary;
+        }
+    }
+    return counts;
+}
+
+// The grids pass on one tile: each pixel's N×N grid mean (every pixel, or only where `only` is
+// 1) by grid_hits and shade_grid, its cut-off weight the samples' mean; with every pixel, its id
+// the grid's sample (N/2, N/2), and the centres' AOVs where the result keeps them.
+TileFigures grids_tile(const World& world, const PrimarySource& source,
+                       const std::vector<std::uint8_t>* only, const TileRect& r,
+                       RenderResult& result) {
+    TileFigures figures;
+    Stopwatch watch;
+    const int width = world.camera().width(), n = world.settings().samples;
+    const std::size_t grid = static_cast<std::size_t>(n) * n;
+    std::vector<std::size_t> pixels; // the tile's pixels to sample, in row order
+    std::vector<Hit> hits;           // their grids' primary hits, one grid after another
+    for (int y = r.y0; y < r.y1; ++y) {
+        for (int x = r.x0; x < r.x1; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y) * width + x;
+            if (only && !(*only)[i]) continue;
+            pixels.push_back(i);
+            hits.resize(hits.size() + grid);
+            grid_hits(world, source, x, y, &hits[hits.size() - grid], figures.stats);
+        }
+    }
+    if (!only && !result.aovs.empty()) figures.rays += centre_aovs(world, source, r, result);
+    figures.primary = watch.lap();
+    for (std::size_t k = 0; k < pixels.size(); ++k) {
+        const std::size_t i = pixels[k];
+        const int x = static_cast<int>(i % width), y = static_cast<int>(i / width);
+        const GridPixel pixel = shade_grid(world, x, y, &hits[k * grid]);
+        store_pixel(result, i, pixel.radiance, pixel.mean);
+        result.omitted_weight[i] = static_cast<float>(pixel.omitted_weight);
+        if (!only) result.ids[i] = pixel.centre_id;
+        figures.rays += pixel.rays;
+    }
+    figures.shading = watch.lap();
+    return figures;
+}
+
+// Runs one pass through the schedule: each tile's figures summed into `result` and `stats`, the
+// pass's wall time shared between times.primary and times.shading in the ratio of its tiles'
+// summed times for each. False when cancelled.
+template <class Tile>
+bool run_pass(TileSchedule& schedule, FramePass pass, RenderResult& result, PrimaryStats& stats,
+              PhaseTimes& times, const Tile& tile) {
+    std::mutex mutex;
+    double primary = 0, shading = 0;
+    const Stopwatch wall;
+    const bool complete = schedule.run(pass, result, [&](const TileRect& rect) {
+        const TileFigures f = tile(rect);
+        const std::lock_guard lock(mutex); // integer sums: order does not matter
+        result.rays += f.rays, stats += f.stats;
+        primary += f.primary, shading += f.shading;
+        return f.rays;
+    });
+    times.add_split(wall.seconds(), primary, shading);
+    return complete;
+}
+
+// The bytes of the pixels marked in `which`, from `colour` into `bytes`.
+void copy_bytes(const FloatImage& colour, const std::vector<std::uint8_t>& which, Image& bytes) {
+    for (std::size_t i = 0; i < which.size(); ++i)
+        if (which[i])
+            for (int c = 0; c < 3; ++c) bytes.rgb[3 * i + c] = to_byte(colour.rgb[3 * i + c]);
+}
+
+} // namespace
+
+RenderResult run_frame(const World& world, const PrimarySource& source, PrimaryStats& stats,
+                       TileSchedule& schedule, PhaseTimes& times, const FrameRequest& request) {
+    const RenderSettings& settings = world.settings();
+    RenderResult result = blank_result(world.camera(), settings.samples, request.aovs);
+    const bool uniform = settings.samples > 1 && settings.antialias == Antialias::uniform;
+    const bool adaptive = settings.samples > 1 && !uniform;
+    const auto grids = [&](FramePass pass, const std::vector<std::uint8_t>* only) {
+        const bool complete = run_pass(schedule, pass, result, stats, times, [&](const TileRect& r) {
+            return grids_tile(world, source, only, r, result);
+        });
+        if (complete) schedule.finish(pass, result, nullptr);
+        return complete;
+    };
+
+    if (!uniform || request.centres_first) {
+        std::vector<Hit> primary(result.ids.size());
+        std::vector<std::uint64_t> path_keys(adaptive ? result.ids.size() : 0);
+        std::vector<std::uint64_t>* keys = adaptive ? &path_keys : nullptr;
+        if (!run_pass(schedule, FramePass::centres, result, stats, times, [&](const TileRect& r) {
+                return centres_tile(world, source, r, primary, result, keys, request.observer);
+            }))
+            return result;
+        schedule.finish(FramePass::centres, result, keys);
+        if (adaptive) {
+            // Rules 1 to 3 (trace/sampling.h) pick the pixels from the first pass's bytes.
+            const Image first = result.bytes();
+            result.refined = timed(times.shading, [&] {
+                return adaptive_refinement(first, path_keys, source.sample_ids, settings.samples,
+                                           settings.aa_threshold);
+            });
+            if (!grids(FramePass::grids, &result.refined)) return result;
+            // Rule 4, round by round; the rounds' scans count as shading, each pass times itself.
+            const double timed_before = times.primary + times.shading;
+            const Stopwatch rounds;
+            Image current = first;
+            copy_bytes(result.display(), result.refined, current);
+            spread_refinement(first, current, result.refined, settings.aa_threshold,
+                              [&](const std::vector<std::uint8_t>& next) {
+                                  if (!grids(FramePass::spread, &next)) return false;
+                                  copy_bytes(result.display(), next, current);
+                                  return true;
+                              });
+            times.shading += rounds.seconds() - (times.primary + times.shading - timed_before);
+            return result;
+        }
+    }
+    if (uniform) grids(FramePass::grids, nullptr);
+    return result;
+}
+
+} // namespace GLINT_PRECISION
+} // namespace glint

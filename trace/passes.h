@@ -1,0 +1,81 @@
+// A frame's passes, in their order, written once for every way a frame is traced:
+//   centres  each pixel centre's primary hit and shading, tile by tile (N = 1's image, and
+//            adaptive antialiasing's first pass);
+//   grids    the N×N sample grids (trace/sampling.h): every pixel (uniform), or the pixels the
+//            adaptive rule picks from the first pass;
+//   spread   the adaptive rule's last part, round by round, until it adds nothing.
+// The tiles of each pass are handed out by a TileSchedule: oneTBB threads in one process, tiles
+// claimed across MPI ranks (with the pixels exchanged after each pass), or the preview's workers,
+// which show each tile as it finishes and stop when the camera moves.
+#pragma once
+
+#include "trace/pixel.h"
+#include "trace/render_result.h"
+
+#include <functional>
+
+namespace glint {
+
+enum class FramePass { centres, grids, spread };
+
+template <> struct EnumNames<FramePass> {
+    static constexpr auto names = name_table("centres", "grids", "spread");
+};
+
+inline namespace GLINT_PRECISION {
+
+// A pass's work on one tile; returns the rays it cast.
+using TileWork = std::function<RayCounts(const TileRect&)>;
+
+// Who traces a pass's tiles, and what happens after each pass.
+class TileSchedule {
+  public:
+    virtual ~TileSchedule() = default;
+    // Calls work(tile) once for each tile of `result`'s image (any order, any thread), and
+    // returns true once all are done, or false when the frame was cancelled (some were not).
+    // `result` may be read for a tile once its work is done.
+    virtual bool run(FramePass pass, const RenderResult& result, const TileWork& work) = 0;
+    // After a pass's last tile, before anything reads its pixels: several processes give each
+    // other their tiles' pixels here (and `keys`, where given).
+    virtual void finish(FramePass, RenderResult&, std::vector<std::uint64_t>*) {}
+};
+
+// This process's threads (oneTBB), or with progress.exchange its share of tiles claimed across
+// processes, exchanged after each pass; tiles of the centres and grids passes are counted in
+// progress.tiles_done.
+class ThreadSchedule final : public TileSchedule {
+  public:
+    explicit ThreadSchedule(const TileProgress& progress) : progress_(progress) {}
+    bool run(FramePass pass, const RenderResult& result, const TileWork& work) override;
+    void finish(FramePass pass, RenderResult& result, std::vector<std::uint64_t>* keys) override;
+
+  private:
+    TileProgress progress_;
+};
+
+// Shown every pixel the centres pass traces, with what its path found (the preview's views).
+class CentreObserver {
+  public:
+    virtual void pixel(int x, int y, const Ray& ray, const PixelSample& sample) = 0;
+
+  protected:
+    ~CentreObserver() = default;
+};
+
+struct FrameRequest {
+    bool aovs = false;          // keep each pixel centre's primary hit (RenderResult::aovs)
+    bool centres_first = false; // uniform grids too start with a centres pass (a first look)
+    CentreObserver* observer = nullptr;
+};
+
+// The frame of `world`, primary hits from `source`, its passes' tiles traced by `schedule`,
+// each pass's primary-hit and shading parts timed into `times`. A cancelled frame returns what
+// it had.
+RenderResult run_frame(const World& world, const PrimarySource& source, PrimaryStats& stats,
+                       TileSchedule& schedule, PhaseTimes& times, const FrameRequest& request = {});
+
+// How many tiles a ThreadSchedule counts in progress.tiles_done over a frame of this size.
+int progress_steps(const RenderSettings& settings, int width, int height);
+
+} // namespace GLINT_PRECISION
+} // namespace glint
