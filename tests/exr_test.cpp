@@ -251,3 +251,25 @@ INSTANTIATE_TEST_SUITE_P(Scenes, AovScene, ::testing::ValuesIn(kShippedScenes),
 
 } // namespace
 } // namespace glint
+
+namespace glint {
+namespace {
+
+// to_byte's truncation of x + 0.5 in double is std::lround's rounding (halves away from zero) of
+// 255·c: checked at every float within 4096 ulps of each half step k + 0.5 (where a rounding
+// rule shows), and across [0, 1] at a stride, with values outside [0, 1] clamped.
+TEST(FloatFrame, ToByteRoundsAsLroundDoes) {
+    const auto reference = [](float c) {
+        return static_cast<std::uint8_t>(std::lround(255.0f * glm::clamp(c, 0.0f, 1.0f)));
+    };
+    for (int k = 0; k < 255; ++k) {
+        float c = (k + 0.5f) / 255.0f;
+        for (int step = 0; step < 4096; ++step) c = std::nextafter(c, 0.0f);
+        for (int step = 0; step < 8192; ++step, c = std::nextafter(c, 1.0f))
+            ASSERT_EQ(to_byte(c), reference(c)) << c;
+    }
+    for (float c = -0.5f; c <= 1.5f; c += 1.0f / 65536) ASSERT_EQ(to_byte(c), reference(c)) << c;
+}
+
+} // namespace
+} // namespace glint

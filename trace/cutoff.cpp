@@ -28,7 +28,7 @@ glm::dvec3 ray_radiance_bound(const Scene& scene) {
 
 CutoffBound cutoff_bound(const Scene& scene, const RenderResult& render) {
     const glm::dvec3 radiance = ray_radiance_bound(scene);
-    const Image bytes = render.bytes();
+    const FloatImage& display = render.display();
     CutoffBound bound;
     bound.per_pixel.assign(render.omitted_weight.size(), 0);
     for (std::size_t i = 0; i < render.omitted_weight.size(); ++i) {
@@ -37,7 +37,7 @@ CutoffBound cutoff_bound(const Scene& scene, const RenderResult& render) {
         if (weight == 0) continue;
         int pixel = 0;
         for (int c = 0; c < 3; ++c) {
-            const int headroom = 255 - bytes.rgb[3 * i + c];
+            const int headroom = 255 - to_byte(display.rgb[3 * i + c]);
             // (1 + 1e-6) absorbs the rounding of the weight and of the sums it is compared with.
             const double steps = std::ceil(255 * weight * radiance[c] * (1 + 1e-6));
             pixel = std::max(pixel, steps < headroom ? static_cast<int>(steps) : headroom);

@@ -37,16 +37,18 @@ struct TileFigures {
     double primary = 0, shading = 0;
 };
 
-// The centres pass on one tile: its primary hits (into `primary`, the whole image's), then its
-// pixels shaded.
+// The centres pass on one tile: its primary hits, kept for the tile alone (a frame's worth
+// would cost a whole image of first-touched pages before the pass), then its pixels shaded.
 TileFigures centres_tile(const World& world, const PrimarySource& source, const TileRect& r,
-                         std::vector<Hit>& primary, RenderResult& result,
-                         std::vector<std::uint64_t>* keys, CentreObserver* observer) {
+                         RenderResult& result, std::vector<std::uint64_t>* keys,
+                         CentreObserver* observer) {
     TileFigures figures;
     Stopwatch watch;
-    tile_primary_hits(world, source, r.x0, r.y0, r.x1, r.y1, primary, figures.stats);
+    const std::size_t stride = static_cast<std::size_t>(r.x1 - r.x0);
+    std::vector<Hit> primary(r.pixels());
+    tile_primary_hits(world, source, r, primary.data(), stride, figures.stats);
     figures.primary = watch.lap();
-    figures.rays = shade_tile(world, primary, r, result, keys, observer);
+    figures.rays = shade_tile(world, primary.data(), stride, r, result, keys, observer);
     figures.shading = watch.lap();
     return figures;
 }
@@ -151,11 +153,10 @@ RenderResult run_frame(const World& world, const PrimarySource& source, PrimaryS
     };
 
     if (!uniform || request.centres_first) {
-        std::vector<Hit> primary(result.ids.size());
         std::vector<std::uint64_t> path_keys(adaptive ? result.ids.size() : 0);
         std::vector<std::uint64_t>* keys = adaptive ? &path_keys : nullptr;
         if (!run_pass(schedule, FramePass::centres, result, stats, times, [&](const TileRect& r) {
-                return centres_tile(world, source, r, primary, result, keys, request.observer);
+                return centres_tile(world, source, r, result, keys, request.observer);
             }))
             return result;
         schedule.finish(FramePass::centres, result, keys);

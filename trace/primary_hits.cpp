@@ -228,31 +228,34 @@ Hit resolve_pixel(const World& world, const IdImage& ids, Resolve resolve, int x
         world, ids, resolve, x, y, [&] { return ray; }, stats);
 }
 
-void tile_primary_hits(const World& world, const PrimarySource& source, int x0, int y0, int x1,
-                       int y1, std::vector<Hit>& hits, PrimaryStats& stats) {
+void tile_primary_hits(const World& world, const PrimarySource& source, const TileRect& r,
+                       Hit* hits, std::size_t stride, PrimaryStats& stats) {
     const PinholeCamera& camera = world.camera();
-    const int width = camera.width();
+    // Pixel (x, y)'s place in `hits`.
+    const auto at = [&](int x, int y) {
+        return static_cast<std::size_t>(y - r.y0) * stride + static_cast<std::size_t>(x - r.x0);
+    };
     static_assert(kBlockSize * kBlockSize == kMaxPacket);
     if (!source.ids) { // ray mode: the tile's camera rays in packets of a block each
-        for (int by = y0; by < y1; by += kBlockSize) {
-            for (int bx = x0; bx < x1; bx += kBlockSize) {
+        for (int by = r.y0; by < r.y1; by += kBlockSize) {
+            for (int bx = r.x0; bx < r.x1; bx += kBlockSize) {
                 Ray rays[kMaxPacket];
                 Hit block[kMaxPacket];
                 std::size_t pixel[kMaxPacket], count = 0;
-                for_each_in_blocks(bx, by, std::min(bx + kBlockSize, x1),
-                                   std::min(by + kBlockSize, y1), [&](int x, int y) {
-                                       pixel[count] = static_cast<std::size_t>(y) * width + x;
+                for_each_in_blocks(bx, by, std::min(bx + kBlockSize, r.x1),
+                                   std::min(by + kBlockSize, r.y1), [&](int x, int y) {
+                                       pixel[count] = at(x, y);
                                        rays[count++] = camera.ray(x, y);
                                    });
                 world.intersect_packet({rays, count}, block);
-                for (std::size_t r = 0; r < count; ++r) hits[pixel[r]] = block[r];
+                for (std::size_t k = 0; k < count; ++k) hits[pixel[k]] = block[k];
             }
         }
         return;
     }
-    for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; ++x)
-            hits[static_cast<std::size_t>(y) * width + x] = resolve_with(
+    for (int y = r.y0; y < r.y1; ++y)
+        for (int x = r.x0; x < r.x1; ++x)
+            hits[at(x, y)] = resolve_with(
                 world, *source.ids, source.resolve, x, y, [&] { return camera.ray(x, y); }, stats);
 }
 
@@ -263,7 +266,9 @@ std::vector<Hit> primary_hits(const World& world, const PrimarySource& source, P
     std::mutex stats_mutex;
     for_each_tile(camera.width(), camera.height(), progress, [&](int x0, int y0, int x1, int y1) {
         PrimaryStats local;
-        tile_primary_hits(world, source, x0, y0, x1, y1, hits, local);
+        tile_primary_hits(world, source, {x0, y0, x1, y1},
+                          &hits[static_cast<std::size_t>(y0) * camera.width() + x0],
+                          static_cast<std::size_t>(camera.width()), local);
         const std::lock_guard lock(stats_mutex);
         stats += local;
     });

@@ -95,10 +95,11 @@ inline Hit primary_hit(const World& world, const PrimarySource& source, int x, i
                       : world.intersect(ray);
 }
 
-// The primary hits of tile [x0, x1)×[y0, y1) into `hits` (the whole image's, row-major): camera
-// rays in packets (ray mode) or the id image resolved (hybrid).
-void tile_primary_hits(const World& world, const PrimarySource& source, int x0, int y0, int x1,
-                       int y1, std::vector<Hit>& hits, PrimaryStats& stats);
+// The primary hits of tile r: camera rays in packets (ray mode) or the id image resolved
+// (hybrid); pixel (x, y)'s into hits[(y − r.y0)·stride + (x − r.x0)] (a tile's own buffer, or
+// the whole image's at the tile's corner with stride = the image's width).
+void tile_primary_hits(const World& world, const PrimarySource& source, const TileRect& r,
+                       Hit* hits, std::size_t stride, PrimaryStats& stats);
 
 // Every pixel's primary hit from `source`, row-major, top row first.
 std::vector<Hit> primary_hits(const World& world, const PrimarySource& source, PrimaryStats& stats,

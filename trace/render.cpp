@@ -13,15 +13,16 @@ RenderResult blank_result(const PinholeCamera& camera, int samples, bool aovs) {
     const int width = camera.width(), height = camera.height();
     const std::size_t pixels = static_cast<std::size_t>(width) * height;
     RenderResult result;
-    result.radiance = FloatImage(width, height);
-    if (samples > 1) result.clamped = FloatImage(width, height);
+    // Every pixel is written by the frame's passes (or, on MPI ranks, by the exchange).
+    result.radiance = FloatImage::uninitialised(width, height);
+    if (samples > 1) result.clamped = FloatImage::uninitialised(width, height);
     result.omitted_weight.assign(pixels, 0.0f);
     result.ids.assign(pixels, 0);
     if (aovs) result.aovs = PrimaryAovs(pixels);
     return result;
 }
 
-RayCounts shade_tile(const World& world, const std::vector<Hit>& primary, const TileRect& r,
+RayCounts shade_tile(const World& world, const Hit* primary, std::size_t stride, const TileRect& r,
                      RenderResult& result, std::vector<std::uint64_t>* path_keys,
                      CentreObserver* observer) {
     const PinholeCamera& camera = world.camera();
@@ -32,7 +33,8 @@ RayCounts shade_tile(const World& world, const std::vector<Hit>& primary, const 
     for_each_in_blocks(r.x0, r.y0, r.x1, r.y1, [&](int x, int y) {
         pixels.push_back(static_cast<std::size_t>(y) * width + x);
         rays.push_back(camera.ray(x, y));
-        hits.push_back(primary[pixels.back()]);
+        hits.push_back(primary[static_cast<std::size_t>(y - r.y0) * stride +
+                               static_cast<std::size_t>(x - r.x0)]);
     });
     const TileLighting lighting(world, rays, hits);
     RayCounts counts;
@@ -59,8 +61,10 @@ RenderResult shade_image(const World& world, const std::vector<Hit>& primary,
     std::mutex counts_mutex;
     for_each_tile(result.radiance.width, result.radiance.height, progress,
                   [&](int x0, int y0, int x1, int y1) {
+                      const std::size_t width = static_cast<std::size_t>(result.radiance.width);
                       const RayCounts counts =
-                          shade_tile(world, primary, {x0, y0, x1, y1}, result, path_keys);
+                          shade_tile(world, &primary[static_cast<std::size_t>(y0) * width + x0],
+                                     width, {x0, y0, x1, y1}, result, path_keys);
                       const std::lock_guard lock(counts_mutex); // integer sums: any order
                       result.rays += counts;
                   });

@@ -34,11 +34,12 @@ inline void store_aovs(RenderResult& result, std::size_t i, const Hit& hit, Vec3
 // the AOVs where asked for.
 RenderResult blank_result(const PinholeCamera& camera, int samples, bool aovs);
 
-// Shades tile r's pixels from their primary hits (`primary`: the whole image's) into `result`:
-// colour, cut-off weight, id, AOVs where kept, and with `path_keys` each pixel's
-// RayTree::path_key; shows each to `observer` where given. Returns the rays cast. The pixels go
-// in blocks, so that their shadow rays go in packets of neighbours (TileLighting).
-RayCounts shade_tile(const World& world, const std::vector<Hit>& primary, const TileRect& r,
+// Shades tile r's pixels from their primary hits (pixel (x, y)'s at primary[(y − r.y0)·stride +
+// (x − r.x0)], as tile_primary_hits leaves them) into `result`: colour, cut-off weight, id, AOVs
+// where kept, and with `path_keys` each pixel's RayTree::path_key; shows each to `observer`
+// where given. Returns the rays cast. The pixels go in blocks, so that their shadow rays go in
+// packets of neighbours (TileLighting).
+RayCounts shade_tile(const World& world, const Hit* primary, std::size_t stride, const TileRect& r,
                      RenderResult& result, std::vector<std::uint64_t>* path_keys,
                      CentreObserver* observer = nullptr);
 
