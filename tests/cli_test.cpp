@@ -117,6 +117,18 @@ TEST(Cli, TradeoffWritesTheCsvAPlotPerSceneAndTheSummary) {
         on_front += row[column("pareto")] == "yes";
         EXPECT_NE(row[column("cutoff_bound_held")], "no") << line;
         bounds_checked += row[column("cutoff_bound_held")] == "yes";
+        // The radiance error sits beside the bytes': zero where the bytes are exact and the
+        // float images too (identical settings), never negative, and at least the byte error's
+        // floor where bytes differ by more than 1/255 (a byte step is 1/255 in radiance, less
+        // its rounding: > (k − 1)/255 for k steps).
+        const double rmse = std::stod(row[column("rmse_radiance")]);
+        const double largest = std::stod(row[column("max_error_radiance")]);
+        EXPECT_GE(rmse, 0) << line;
+        EXPECT_GE(largest, rmse) << line;
+        const int byte_error = std::stoi(row[column("max_abs_error_255")]);
+        if (byte_error > 1) {
+            EXPECT_GT(largest, (byte_error - 1) / 255.0) << line;
+        }
         const unsigned long n = std::stoul(row[column("samples")]);
         const unsigned long primary = std::stoul(row[column("rays_primary")]);
         if (row[column("antialias")] == "adaptive") {

@@ -2,6 +2,8 @@
 // file, the JSON path (or line and column) and what is wrong.
 #include "test_scenes.h"
 
+#include "trace/scene_check.h"
+
 #include <gtest/gtest.h>
 
 namespace glint {
@@ -196,6 +198,73 @@ TEST(SceneLoader, ObjectNamesLineUpWithTheObjects) {
     EXPECT_EQ(scene.object_names, (std::vector<std::string>{"", "box", "", "disk"}));
     EXPECT_THROW(parse_scene(R"({"objects": [{"name": 3, "shape": "sphere"}]})", "n.json"),
                  SceneError);
+}
+
+} // namespace
+} // namespace glint
+
+namespace glint {
+namespace {
+
+// trace/scene_check.h: the rules hold a Scene whatever made it; the loader only names places.
+// A scene built in code, broken one part at a time, is refused with the place its ScenePlaces
+// gives for the part's model path, and the same rule reads the same in JSON and NFF.
+TEST(SceneCheck, EachRuleNamesThePartsModelPathThroughTheLoadersPlaces) {
+    const ScenePlaces places = [](const std::string& path) { return "here: " + path; };
+    const auto refusal = [&](const Scene& scene) {
+        try {
+            check_scene(scene, places);
+        } catch (const SceneError& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    Scene scene;
+    scene.materials.push_back(Material{});
+    EXPECT_EQ(refusal(scene), "accepted");
+    Scene bad = scene;
+    bad.camera.look_at = bad.camera.eye;
+    EXPECT_EQ(refusal(bad), "here: camera: eye and look_at must differ");
+    bad = scene;
+    bad.lights.push_back({DVec3(0, 2e15, 0), glm::vec3(1)});
+    EXPECT_EQ(refusal(bad), "here: lights/0/position/1: coordinates must be within ±1e15");
+    bad = scene;
+    bad.materials[0].transmission = 0.5f, bad.materials[0].ior = 0;
+    EXPECT_EQ(refusal(bad), "here: materials/0/ior: must be above 0 and at most 100");
+    bad = scene;
+    bad.render.samples = 17;
+    EXPECT_EQ(refusal(bad), "here: render/samples: must be between 1 and 16, got 17");
+    bad = scene;
+    bad.meshes.push_back({{glm::vec3(0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0)}, {{0, 1, 3}}, {}});
+    EXPECT_EQ(refusal(bad), "here: meshes/0/indices/2: must be between 0 and 2, got 3");
+    bad = scene;
+    SceneObject far;
+    far.transform = translation_matrix(DVec3(0, 0, 9e14)) * scale_matrix(DVec3(2e14));
+    bad.objects.push_back(far);
+    EXPECT_EQ(refusal(bad), "here: objects/0/transform: the placed object reaches 1.1e+15 from "
+                            "the origin; objects must lie within ±1e15");
+
+    // The same rule from both formats: only the place differs.
+    const std::string json_error = [&] {
+        try {
+            parse_scene(R"({"materials": {"m": {"reflectivity": 2}}})", "s.json");
+        } catch (const SceneError& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    }();
+    const std::string nff_error = [&] {
+        try {
+            parse_nff("v from 0 0 1 at 0 0 0 up 0 1 0 angle 40 hither 1 resolution 8 8\n"
+                      "f 1 1 1 0.5 2 3 0 1\n",
+                      "s.nff");
+        } catch (const SceneError& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    }();
+    EXPECT_EQ(json_error, "s.json: /materials/m/reflectivity: must be between 0 and 1, got 2");
+    EXPECT_EQ(nff_error, "s.nff:2: f's Ks: must be between 0 and 1, got 2");
 }
 
 } // namespace

@@ -83,13 +83,7 @@ std::string encode_exr(const ExrLayers& layers) {
 }
 
 void write_exr(const std::filesystem::path& path, const ExrLayers& layers) {
-    std::string exr;
-    try {
-        exr = encode_exr(layers);
-    } catch (const std::runtime_error& e) {
-        throw std::runtime_error("cannot encode " + path.string() + " as OpenEXR: " + e.what());
-    }
-    write_file_atomically(path, exr);
+    write_encoded(path, "OpenEXR", [&] { return encode_exr(layers); });
 }
 
 } // namespace glint

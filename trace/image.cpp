@@ -155,13 +155,7 @@ std::string encode_png(const Image& image) {
 }
 
 void write_png(const std::filesystem::path& path, const Image& image) {
-    std::string png;
-    try {
-        png = encode_png(image);
-    } catch (const std::runtime_error& e) {
-        throw std::runtime_error("cannot encode " + path.string() + " as PNG: " + e.what());
-    }
-    write_file_atomically(path, png);
+    write_encoded(path, "PNG", [&] { return encode_png(image); });
 }
 
 Image read_png(const std::filesystem::path& path) {

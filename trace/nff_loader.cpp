@@ -2,6 +2,7 @@
 // "NFF scenes"). Read as whitespace-separated tokens, since the generators put on one line what
 // the format describes on several; every error names the file and the line of the token at fault.
 #include "trace/polygon.h"
+#include "trace/scene_check.h"
 #include "trace/scene_loader.h"
 #include "trace/shapes/table.h"
 
@@ -45,6 +46,7 @@ class NffReader {
                 viewed = true;
             } else if (word == "b") {
                 scene_.background = colour(*t, "background");
+                background_line_ = t->line;
             } else if (word == "l") {
                 light(*t);
             } else if (word == "f") {
@@ -71,10 +73,56 @@ class NffReader {
         if (degenerate_polygons_ > 0)
             scene_.notes.push_back(std::to_string(degenerate_polygons_) +
                                    " polygon(s) of zero area left out");
+        check_scene(scene_, [&](const std::string& path) { return place_of(path); });
         return std::move(scene_);
     }
 
   private:
+    // A part of the scene model (trace/scene_check.h) as the line of the entity that gave it and
+    // the entity's field in NFF's words.
+    std::string place_of(const std::string& path) const {
+        const auto part = [&](std::size_t i) {
+            std::size_t at = 0;
+            for (std::size_t k = 0; k < i && at != std::string::npos; ++k) {
+                at = path.find('/', at);
+                if (at != std::string::npos) ++at;
+            }
+            if (at == std::string::npos) return std::string();
+            return path.substr(at, path.find('/', at) - at);
+        };
+        const auto index = [&] { return static_cast<std::size_t>(std::stoul(part(1))); };
+        const std::string top = part(0);
+        int line = 1;
+        std::string what = path;
+        const auto field = [&](const std::string& name) { return part(2) == name; };
+        if (top == "camera") {
+            const std::string f = part(1);
+            line = f == "eye" ? view_.from : f == "up" ? view_.up : f == "fov_y" ? view_.angle
+                 : f == "width" || f == "height" ? view_.resolution : view_.at;
+            what = f == "eye" ? "v's from" : f == "look_at" ? "v's at" : f == "up" ? "v's up"
+                 : f == "fov_y" ? "v's angle" : f == "width" || f == "height" ? "v's resolution"
+                 : "v's from and at";
+        } else if (top == "background") {
+            line = background_line_, what = "b's background";
+        } else if (top == "lights") {
+            line = light_lines_.empty() ? 1 : part(1).empty() ? light_lines_.back()
+                                                              : light_lines_.at(index());
+            what = field("color") ? "l's colour" : part(1).empty() ? "l" : "l's position";
+        } else if (top == "materials") {
+            line = material_lines_.at(index());
+            what = field("diffuse") || field("ambient") ? "f's colour × Kd"
+                 : field("specular") || field("reflectivity") ? "f's Ks"
+                 : field("shininess") ? "f's shine" : field("transmission") ? "f's T"
+                 : field("ior") ? "f's index of refraction" : "f";
+        } else if (top == "objects") {
+            line = object_lines_.at(index());
+            what = field("top_radius") ? "c's radii" : "the object's placement";
+        } else if (top == "meshes") {
+            line = mesh_lines_.at(index()), what = "the polygons' vertices";
+        }
+        return name_ + ":" + std::to_string(line) + ": " + what;
+    }
+
     [[noreturn]] void fail(int line, const std::string& message) const {
         throw SceneError(name_ + ":" + std::to_string(line) + ": " + message);
     }
@@ -152,11 +200,9 @@ class NffReader {
         return v;
     }
 
+    // Its range is the scene check's (trace/scene_check.h); numbers are within ±1e15 here.
     glm::vec3 colour(const Token& entity, const char* what) {
-        glm::vec3 c;
-        for (int i = 0; i < 3; ++i)
-            c[i] = static_cast<float>(number_in(entity, what, 0, kMaxColour));
-        return c;
+        return glm::vec3(vec3(entity, what));
     }
 
     // Expects the keyword `word` of the view block next.
@@ -172,24 +218,20 @@ class NffReader {
 
     void view(const Token& v) {
         Camera& c = scene_.camera;
-        c.eye = vec3(keyword(v, "from"), "position");
+        const Token from = keyword(v, "from");
+        c.eye = vec3(from, "position");
         const Token at = keyword(v, "at");
         c.look_at = vec3(at, "position");
-        if (c.look_at == c.eye) fail(at.line, "'at' must differ from 'from'");
         const Token up = keyword(v, "up");
         c.up = vec3(up, "direction");
-        const DVec3 forward = glm::normalize(c.look_at - c.eye);
-        if (glm::length(c.up) == 0 || glm::length(glm::cross(forward, glm::normalize(c.up))) < 1e-6)
-            fail(up.line, "'up' must not be zero nor parallel to the viewing direction");
         const Token angle_token = keyword(v, "angle");
         const double angle = number(angle_token, "field of view");
-        if (!(angle > 0 && angle < 180))
-            fail(last_line_, "'angle' must be strictly between 0 and 180 degrees");
         const Token hither = keyword(v, "hither");
         number(hither, "distance"); // the near plane of z-buffers; a ray tracer has none
         const Token resolution = keyword(v, "resolution");
-        c.width = integer_in(resolution, "width", 1, kMaxImageSide);
-        c.height = integer_in(resolution, "height", 1, kMaxImageSide);
+        c.width = integer_in(resolution, "width", -1000000000, 1000000000);
+        c.height = integer_in(resolution, "height", -1000000000, 1000000000);
+        view_ = {from.line, at.line, up.line, angle_token.line, resolution.line};
         // NFF's angle spans the centres of the outermost pixels; glint's fov_y spans the image's
         // edges, half a pixel further on each side.
         const double h = std::tan(angle * std::numbers::pi / 360.0);
@@ -198,8 +240,7 @@ class NffReader {
     }
 
     void light(const Token& l) {
-        if (scene_.lights.size() == kMaxLights)
-            fail(l.line, "more lights than the limit of " + std::to_string(kMaxLights));
+        light_lines_.push_back(l.line);
         PointLight light;
         light.position = vec3(l, "position");
         if (number_follows()) {
@@ -211,17 +252,16 @@ class NffReader {
     }
 
     void fill(const Token& f) {
+        // Ranges are the scene check's (trace/scene_check.h), on the material they make.
         const glm::vec3 rgb = colour(f, "colour");
-        const double kd = number_in(f, "Kd", 0, kMaxColour);
-        const double ks = number_in(f, "Ks", 0, 1);
-        const double shine = number_in(f, "shine", 0, 1e6);
-        const double transmission = number_in(f, "T", 0, 1);
+        const double kd = number(f, "Kd");
+        const double ks = number(f, "Ks");
+        const double shine = number(f, "shine");
+        const double transmission = number(f, "T");
         const double ior = number(f, "index of refraction");
-        // Only a transmitting material's index matters (and must then be usable).
-        if (transmission > 0 && !usable_ior(ior))
-            fail(f.line, "f's index of refraction must be above 0 and at most 100 where T > 0");
         Material m;
         m.transmission = static_cast<float>(transmission);
+        // Only a transmitting material's index matters (and must then be usable).
         m.ior = transmission > 0 ? static_cast<float>(ior) : 1.5f;
         m.diffuse = rgb * static_cast<float>(kd);
         m.ambient = m.diffuse; // the scene's ambient light is 0: only glint's default matters
@@ -235,24 +275,25 @@ class NffReader {
         if (added) {
             scene_.materials.push_back(m);
             scene_.material_names.push_back("nff-" + std::to_string(f.line));
+            material_lines_.push_back(f.line);
         }
         if (it->second != material_) flush_meshes();
         material_ = it->second;
     }
 
-    void add(SceneObject o) {
+    void add(SceneObject o, int line) {
         o.material = material_;
         scene_.objects.push_back(o);
+        object_lines_.push_back(line);
     }
 
     void sphere(const Token& s) {
         const DVec3 centre = vec3(s, "centre");
         const double r = std::abs(number(s, "radius"));
-        if (r == 0) fail(last_line_, "a sphere's radius must not be zero");
         SceneObject o;
         o.shape = ShapeKind::sphere;
-        o.transform = translation_matrix(centre) * scale_matrix(DVec3(r));
-        add(o);
+        o.transform = translation_matrix(centre) * scale_matrix(DVec3(r)); // r = 0: singular
+        add(o, s.line);
     }
 
     // An open truncated cone from base (radius r0) to apex (radius r1): glint's unit cone, radius
@@ -267,7 +308,6 @@ class NffReader {
         if (r0 == 0 && r1 == 0) fail(last_line_, "a cone needs a non-zero radius at one end");
         if (base == apex) fail(last_line_, "a cone's base and apex must differ");
         if (r0 == 0) std::swap(base, apex), std::swap(r0, r1);
-        if (r1 / r0 > 1e6) fail(last_line_, "a cone's radii differ by more than a factor 1e6");
         const DVec3 axis = apex - base;
         const double length = glm::length(axis);
         const DVec3 y = axis / length;
@@ -280,14 +320,12 @@ class NffReader {
         m[1] = glm::dvec4(axis, 0.0);
         m[2] = glm::dvec4(z * r0, 0.0);
         m[3] = glm::dvec4(base, 1.0);
-        if (const auto why = why_unusable(m))
-            fail(last_line_, "this cone cannot be placed: " + *why);
         SceneObject o;
         o.shape = r0 == r1 ? ShapeKind::cylinder : ShapeKind::cone;
         o.top_radius = o.shape == ShapeKind::cone ? static_cast<float>(r1 / r0) : 0.0f;
         o.open = true;
         o.transform = m;
-        add(o);
+        add(o, c.line);
     }
 
     // A polygon or patch, triangulated into the mesh of the current material run: a file's
@@ -307,6 +345,7 @@ class NffReader {
         }
         TriangleMesh& mesh = patch ? smooth_ : flat_;
         if (mesh.vertices.size() + points.size() > kMaxMeshVertices) flush_meshes();
+        if (mesh.triangles.empty()) (patch ? smooth_line_ : flat_line_) = p.line;
         const auto first = static_cast<std::uint32_t>(mesh.vertices.size());
         for (const glm::dvec3& q : points) mesh.vertices.push_back(glm::vec3(q));
         if (patch) {
@@ -326,7 +365,9 @@ class NffReader {
             o.material = material_;
             o.mesh = static_cast<std::uint32_t>(scene_.meshes.size());
             scene_.meshes.push_back(std::move(*mesh));
-            scene_.objects.push_back(o);
+            const int line = mesh == &flat_ ? flat_line_ : smooth_line_;
+            mesh_lines_.push_back(line);
+            add(o, line);
             *mesh = TriangleMesh{};
         }
     }
@@ -341,6 +382,13 @@ class NffReader {
     std::uint32_t material_ = 0;
     std::size_t degenerate_polygons_ = 0;
     TriangleMesh flat_, smooth_; // the current material's polygons and patches
+    // Where the scene's parts came from (place_of): the lines of the view's keywords, of b, of
+    // each light, material (f), object and mesh (its first polygon).
+    struct ViewLines {
+        int from = 1, at = 1, up = 1, angle = 1, resolution = 1;
+    } view_;
+    int background_line_ = 1, flat_line_ = 1, smooth_line_ = 1;
+    std::vector<int> light_lines_, material_lines_{1}, object_lines_, mesh_lines_;
 };
 
 } // namespace

@@ -248,7 +248,7 @@ Material mtl_material(const tinyobj::material_t& m, const std::string& name) {
     material.diffuse = mtl_colour(m.diffuse, "Kd", m.name, name);
     material.ambient = material.diffuse;
     material.specular = mtl_colour(m.specular, "Ks", m.name, name);
-    if (!(m.shininess >= 0 && m.shininess <= 1e4)) fail("Ns must be between 0 and 10000");
+    // Ns's range is the scene check's (trace/scene_check.h), as `shininess`.
     material.shininess = m.shininess;
     if (!(m.dissolve >= 0 && m.dissolve <= 1)) fail("d must be between 0 and 1 (Tr: 1 − d)");
     if (m.illum >= 3 && m.illum <= 7)

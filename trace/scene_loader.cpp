@@ -1,6 +1,7 @@
 #include "trace/scene_loader.h"
 
 #include "trace/obj_loader.h"
+#include "trace/scene_check.h"
 #include "trace/shapes/table.h"
 
 #include <nlohmann/json.hpp>
@@ -70,6 +71,7 @@ class Loader {
     explicit Loader(std::string file) : file_(std::move(file)) {}
 
     Scene load(const json& root) {
+        root_ = &root;
         const Node top{root, ""};
         expect_object(top, {"description", "camera", "background", "ambient", "lights", "materials",
                             "objects", "render"});
@@ -80,24 +82,69 @@ class Loader {
         if (has(top, "ambient")) scene.ambient = colour(top.child("ambient"));
         if (has(top, "lights")) {
             const Node lights = array(top.child("lights"));
-            if (lights.value.size() > kMaxLights)
-                fail(lights, "has " + std::to_string(lights.value.size()) +
-                                 " lights; the limit is " + std::to_string(kMaxLights));
             for (std::size_t i = 0; i < lights.value.size(); ++i)
                 scene.lights.push_back(light(lights[i]));
         }
         scene.materials.push_back(Material{});
         scene.material_names.push_back("default");
+        material_places_.push_back("/materials/default");
+        material_names_.push_back("default");
         if (has(top, "materials")) materials(top.child("materials"), scene);
         if (has(top, "render")) scene.render = render(top.child("render"));
         if (has(top, "objects")) {
             const Node objects = array(top.child("objects"));
             for (std::size_t i = 0; i < objects.value.size(); ++i) object(objects[i], scene);
         }
+        check_scene(scene, [&](const std::string& path) { return place_of(path); });
         return scene;
     }
 
   private:
+    // A part of the scene model (trace/scene_check.h) as the place in this file it came from:
+    // the JSON pointer of its part, then as much of the rest of its path as the file spells out.
+    std::string place_of(const std::string& path) const {
+        std::vector<std::string> parts;
+        for (std::size_t at = 0; at <= path.size();) {
+            const std::size_t slash = std::min(path.find('/', at), path.size());
+            parts.push_back(path.substr(at, slash - at));
+            at = slash + 1;
+        }
+        std::string pointer;
+        std::size_t next = 0;
+        const auto index = [&] { return static_cast<std::size_t>(std::stoul(parts.at(1))); };
+        // What came from an OBJ file (its MTL materials, its meshes) is named by the scene's
+        // file key, then the part of the model the rule is about.
+        const auto in_obj = [&](const std::string& file_key, std::string what) {
+            for (std::size_t k = 2; k < parts.size(); ++k) what += " " + parts[k];
+            return file_ + ": " + file_key + ": " + what;
+        };
+        if (parts[0] == "materials" && parts.size() > 1) {
+            pointer = material_places_.at(index()), next = 2;
+            if (pointer.ends_with("/file"))
+                return in_obj(pointer, "material '" + material_names_.at(index()) + "'");
+        } else if (parts[0] == "objects" && parts.size() > 1) {
+            pointer = object_places_.at(index()), next = 2;
+        } else if (parts[0] == "meshes" && parts.size() > 1) {
+            const MeshPlace& mesh = mesh_places_.at(index());
+            pointer = mesh.pointer, next = 2;
+            if (pointer.ends_with("/file")) return in_obj(pointer, "mesh");
+            // Indices given as triples: the model's flat index k is triple k/3, corner k mod 3.
+            if (mesh.triples && parts.size() == 4 && parts[2] == "indices") {
+                const std::size_t k = std::stoul(parts[3]);
+                parts = {"", "", "indices", std::to_string(k / 3), std::to_string(k % 3)};
+            }
+        } else if (path == "render/min_reflectivity" && root_->contains("render") &&
+                   (*root_)["render"].is_object() && (*root_)["render"].contains("min_weight")) {
+            parts = {"render", "min_weight"};
+        }
+        for (; next < parts.size(); ++next) {
+            const std::string longer = pointer + "/" + parts[next];
+            if (!root_->contains(json::json_pointer(longer))) break;
+            pointer = longer;
+        }
+        return file_ + ": " + (pointer.empty() ? "/" : pointer);
+    }
+
     [[noreturn]] void fail(const Node& node, const std::string& message) const {
         throw SceneError(file_ + ": " + (node.path.empty() ? "/" : node.path) + ": " + message);
     }
@@ -135,20 +182,17 @@ class Loader {
         return v;
     }
 
-    double number_in(const Node& node, double lo, double hi) const {
-        const double v = number(node);
-        if (v < lo || v > hi) {
-            std::ostringstream range;
-            range << "must be between " << lo << " and " << hi << ", got " << v;
-            fail(node, range.str());
-        }
-        return v;
+    // A number as the model's float holds it: one beyond float's range is held at ±3e38, still
+    // beyond every range the scene check allows.
+    float real(const Node& node) const {
+        return static_cast<float>(std::clamp(number(node), -3e38, 3e38));
     }
 
-    int integer_in(const Node& node, int lo, int hi) const {
-        const double v = number_in(node, lo, hi);
+    // A whole number that an int holds; its range is the scene check's (trace/scene_check.h).
+    int whole(const Node& node) const {
+        const double v = number(node);
         if (v != std::floor(v)) fail(node, "must be a whole number");
-        return static_cast<int>(v);
+        return static_cast<int>(std::clamp(v, -1e9, 1e9));
     }
 
     DVec3 vec3(const Node& node) const {
@@ -160,23 +204,11 @@ class Loader {
         return {number(node[0]), number(node[1]), number(node[2])};
     }
 
-    // A position: within ±kMaxCoordinate, so that differences and their squares stay finite.
-    DVec3 point(const Node& node) const {
-        const DVec3 p = vec3(node);
-        for (int i = 0; i < 3; ++i)
-            if (std::abs(p[i]) > kMaxCoordinate)
-                fail(node[static_cast<std::size_t>(i)], "coordinates must be within ±1e15");
-        return p;
-    }
-
+    // A position or a colour: its range is the scene check's (trace/scene_check.h). A colour
+    // beyond float's range stays beyond it (+inf), so that the check sees it.
+    DVec3 point(const Node& node) const { return vec3(node); }
     glm::vec3 colour(const Node& node) const {
-        const DVec3 c = vec3(node);
-        for (int i = 0; i < 3; ++i)
-            if (c[i] < 0)
-                fail(node[static_cast<std::size_t>(i)], "colour components must not be negative");
-            else if (c[i] > kMaxColour)
-                fail(node[static_cast<std::size_t>(i)], "colour components must be at most 1e6");
-        return glm::vec3(c);
+        return glm::vec3(glm::clamp(vec3(node), DVec3(-3e38), DVec3(3e38)));
     }
 
     Camera camera(const Node& node) const {
@@ -185,20 +217,9 @@ class Loader {
         if (has(node, "eye")) c.eye = point(node.child("eye"));
         if (has(node, "look_at")) c.look_at = point(node.child("look_at"));
         if (has(node, "up")) c.up = point(node.child("up"));
-        if (has(node, "fov_y")) {
-            c.fov_y = number(node.child("fov_y"));
-            if (!(c.fov_y > 0 && c.fov_y < 180))
-                fail(node.child("fov_y"), "must be an angle in degrees strictly between 0 and 180");
-        }
-        if (has(node, "width")) c.width = integer_in(node.child("width"), 1, kMaxImageSide);
-        if (has(node, "height")) c.height = integer_in(node.child("height"), 1, kMaxImageSide);
-        const DVec3 forward = c.look_at - c.eye;
-        if (glm::length(forward) == 0) fail(node, "eye and look_at must differ");
-        if (glm::length(c.up) == 0) fail(node.child("up"), "must not be zero");
-        const double sine = glm::length(glm::cross(glm::normalize(forward), glm::normalize(c.up)));
-        if (sine < 1e-6)
-            fail(has(node, "up") ? node.child("up") : node,
-                 "up is parallel to the viewing direction");
+        if (has(node, "fov_y")) c.fov_y = number(node.child("fov_y"));
+        if (has(node, "width")) c.width = whole(node.child("width"));
+        if (has(node, "height")) c.height = whole(node.child("height"));
         return c;
     }
 
@@ -226,6 +247,8 @@ class Loader {
             }
             scene.materials.push_back(m);
             scene.material_names.push_back(name);
+            material_places_.push_back(node.child(name).path);
+            material_names_.push_back(name);
         }
     }
 
@@ -236,18 +259,10 @@ class Loader {
         if (has(node, "diffuse")) m.diffuse = colour(node.child("diffuse"));
         m.ambient = has(node, "ambient") ? colour(node.child("ambient")) : m.diffuse;
         if (has(node, "specular")) m.specular = colour(node.child("specular"));
-        if (has(node, "shininess"))
-            m.shininess = static_cast<float>(number_in(node.child("shininess"), 0, 1e4));
-        if (has(node, "reflectivity"))
-            m.reflectivity = static_cast<float>(number_in(node.child("reflectivity"), 0, 1));
-        if (has(node, "transmission"))
-            m.transmission = static_cast<float>(number_in(node.child("transmission"), 0, 1));
-        if (has(node, "ior")) {
-            const Node ior = node.child("ior");
-            const double v = number(ior);
-            if (!usable_ior(v)) fail(ior, "must be above 0 and at most 100");
-            m.ior = static_cast<float>(v);
-        }
+        if (has(node, "shininess")) m.shininess = real(node.child("shininess"));
+        if (has(node, "reflectivity")) m.reflectivity = real(node.child("reflectivity"));
+        if (has(node, "transmission")) m.transmission = real(node.child("transmission"));
+        if (has(node, "ior")) m.ior = real(node.child("ior"));
         if (has(node, "checker")) m.checker = checker(node.child("checker"));
         return m;
     }
@@ -257,10 +272,10 @@ class Loader {
         if (!has(node, "size")) fail(node, "a checker needs a size");
         if (!has(node, "diffuse")) fail(node, "a checker needs a diffuse colour");
         Checker c;
-        const double size = number(node.child("size"));
-        if (!(size > 0 && size <= kMaxCoordinate))
-            fail(node.child("size"), "must be above 0 and at most 1e15");
-        c.size = static_cast<float>(size);
+        // The model's size 0 means no checker: a file's checker must not say 0 (the rest of the
+        // range is the scene check's).
+        c.size = real(node.child("size"));
+        if (c.size == 0) fail(node.child("size"), "must be above 0 and at most 1e15");
         c.diffuse = colour(node.child("diffuse"));
         c.ambient = has(node, "ambient") ? colour(node.child("ambient")) : c.diffuse;
         return c;
@@ -270,23 +285,21 @@ class Loader {
         expect_object(node, {"max_depth", "min_weight", "min_reflectivity", "samples", "antialias",
                              "aa_threshold"});
         RenderSettings r;
-        if (has(node, "samples")) r.samples = integer_in(node.child("samples"), 1, kMaxSamples);
+        if (has(node, "samples")) r.samples = whole(node.child("samples"));
         if (has(node, "antialias")) {
             const Node aa = node.child("antialias");
             const std::optional<Antialias> kind = from_name<Antialias>(string(aa));
             if (!kind) fail(aa, "expected uniform or adaptive");
             r.antialias = *kind;
         }
-        if (has(node, "aa_threshold"))
-            r.aa_threshold = static_cast<float>(number_in(node.child("aa_threshold"), 0, 1));
-        if (has(node, "max_depth")) r.max_depth = integer_in(node.child("max_depth"), 0, kMaxDepth);
+        if (has(node, "aa_threshold")) r.aa_threshold = real(node.child("aa_threshold"));
+        if (has(node, "max_depth")) r.max_depth = whole(node.child("max_depth"));
         // min_reflectivity is the name from before transmission; both mean the same.
         if (has(node, "min_weight") && has(node, "min_reflectivity"))
             fail(node.child("min_reflectivity"),
                  "give min_weight or min_reflectivity (its older name), not both");
         for (const char* key : {"min_weight", "min_reflectivity"})
-            if (has(node, key))
-                r.min_reflectivity = static_cast<float>(number_in(node.child(key), 0, 1));
+            if (has(node, key)) r.min_reflectivity = real(node.child(key));
         return r;
     }
 
@@ -329,7 +342,6 @@ class Loader {
         DMat4 m(1.0);
         // Applied in order, first entry first: [scale, rotate, translate] gives M = T·R·S.
         for (std::size_t i = 0; i < node.value.size(); ++i) m = transform_entry(node[i]) * m;
-        if (const auto why = why_unusable(m)) fail(node, *why);
         return m;
     }
 
@@ -339,7 +351,7 @@ class Loader {
         if (!has(node, "vertices")) fail(node, std::string(name_of(shape)) + " needs vertices");
         const Node vertices = array(node.child("vertices"));
         TriangleMesh mesh;
-        if (vertices.value.size() > kMaxMeshVertices)
+        if (vertices.value.size() > kMaxMeshVertices) // before reading them
             fail(vertices, "has " + std::to_string(vertices.value.size()) +
                                " vertices; the limit is " + std::to_string(kMaxMeshVertices));
         for (std::size_t i = 0; i < vertices.value.size(); ++i) {
@@ -348,9 +360,6 @@ class Loader {
         }
         if (!shape_traits(shape).keys.indices) {
             if (mesh.vertices.size() != 3) fail(vertices, "a triangle has exactly 3 vertices");
-            const glm::vec3 normal = glm::cross(mesh.vertices[1] - mesh.vertices[0],
-                                                mesh.vertices[2] - mesh.vertices[0]);
-            if (glm::length(normal) == 0) fail(vertices, "the triangle's vertices are collinear");
             mesh.triangles.push_back({0, 1, 2});
             return mesh;
         }
@@ -358,9 +367,12 @@ class Loader {
         const Node indices = array(node.child("indices"));
         // Either a flat list [a, b, c, d, e, f, …] or triples [[a, b, c], [d, e, f], …].
         std::vector<std::uint32_t> flat;
+        // A vertex's number; that it names one of the vertices is the scene check's.
         const auto index = [&](const Node& n) {
-            flat.push_back(static_cast<std::uint32_t>(
-                integer_in(n, 0, static_cast<int>(mesh.vertices.size()) - 1)));
+            const double v = number(n);
+            if (v != std::floor(v)) fail(n, "must be a whole number");
+            if (v < 0) fail(n, "must not be negative");
+            flat.push_back(static_cast<std::uint32_t>(std::min(v, 4294967295.0)));
         };
         for (std::size_t i = 0; i < indices.value.size(); ++i) {
             const Node entry = indices[i];
@@ -374,9 +386,6 @@ class Loader {
         if (flat.empty() || flat.size() % 3 != 0)
             fail(indices,
                  "needs a positive multiple of 3 indices, got " + std::to_string(flat.size()));
-        if (flat.size() / 3 > kMaxMeshTriangles)
-            fail(indices,
-                 "has more triangles than the limit of " + std::to_string(kMaxMeshTriangles));
         for (std::size_t i = 0; i < flat.size(); i += 3)
             mesh.triangles.push_back({flat[i], flat[i + 1], flat[i + 2]});
         return mesh;
@@ -427,8 +436,7 @@ class Loader {
             o.material = static_cast<std::uint32_t>(found - scene.material_names.begin());
         }
         if (has(node, "transform")) o.transform = transform(node.child("transform"));
-        if (has(node, "top_radius"))
-            o.top_radius = static_cast<float>(number_in(node.child("top_radius"), 0, 1e6));
+        if (has(node, "top_radius")) o.top_radius = real(node.child("top_radius"));
         if (has(node, "open")) o.open = boolean(node.child("open"));
         std::vector<SceneObject> placed;
         if (from_file) {
@@ -444,32 +452,20 @@ class Loader {
             if (keys.vertices) {
                 o.mesh = static_cast<std::uint32_t>(scene.meshes.size());
                 scene.meshes.push_back(mesh(node, o.shape));
+                const bool triples = has(node, "indices") && node.child("indices").value.is_array() &&
+                                     !node.child("indices").value.empty() &&
+                                     node.child("indices").value[0].is_array();
+                mesh_places_.push_back({node.path, triples});
             }
             placed.push_back(o);
         }
-        for (const SceneObject& p : placed) check_reach(node, p, scene);
+        object_places_.insert(object_places_.end(), placed.size(), node.path);
         if (has(node, "name")) {
             scene.object_names.resize(scene.objects.size());
             scene.object_names.insert(scene.object_names.end(), placed.size(),
                                       string(node.child("name")));
         }
         scene.objects.insert(scene.objects.end(), placed.begin(), placed.end());
-    }
-
-    // Positions are bounded so that their squares stay finite in float; so must every point of
-    // a placed object (a mesh vertex of 1e15 scaled by 1e15 is not a position).
-    void check_reach(const Node& node, const SceneObject& o, const Scene& scene) const {
-        if (const std::optional<ObjectBox> box = unit_box(o, scene.meshes)) {
-            const auto [lo, hi] = transformed_box(*box, o.transform);
-            const DVec3 far = glm::max(glm::abs(lo), glm::abs(hi));
-            const double reach = std::max({far.x, far.y, far.z});
-            if (reach > kMaxCoordinate) {
-                std::ostringstream message;
-                message << "the placed object reaches " << reach
-                        << " from the origin; objects must lie within ±1e15";
-                fail(has(node, "transform") ? node.child("transform") : node, message.str());
-            }
-        }
     }
 
     // The meshes (and their materials) of an OBJ file, read once per scene: a path relative to
@@ -496,15 +492,27 @@ class Loader {
                 material = static_cast<std::uint32_t>(scene.materials.size());
                 scene.materials.push_back(*part.material);
                 scene.material_names.push_back(given + ":" + part.material_name);
+                material_places_.push_back(node.path); // the file's MTL: named by the file key
+                material_names_.push_back(given + ":" + part.material_name);
             }
             parts.emplace_back(static_cast<std::uint32_t>(scene.meshes.size()), material);
             scene.meshes.push_back(std::move(part.mesh));
+            mesh_places_.push_back({node.path, false});
         }
         scene.notes.insert(scene.notes.end(), model.notes.begin(), model.notes.end());
         return obj_cache_.emplace(key, std::move(parts)).first->second;
     }
 
+    // Where each material, object and mesh of the model came from (place_of).
+    struct MeshPlace {
+        std::string pointer; // the object that gave its vertices, or the file key naming its OBJ
+        bool triples;        // its indices were given as [a, b, c] triples
+    };
+
     std::string file_;
+    const json* root_ = nullptr;
+    mutable std::vector<std::string> material_places_, material_names_, object_places_;
+    mutable std::vector<MeshPlace> mesh_places_;
     mutable std::map<std::string, std::vector<std::pair<std::uint32_t, std::uint32_t>>> obj_cache_;
 };
 
