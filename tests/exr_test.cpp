@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
 
 namespace glint {
@@ -269,6 +270,8 @@ TEST(FloatFrame, ToByteRoundsAsLroundDoes) {
             ASSERT_EQ(to_byte(c), reference(c)) << c;
     }
     for (float c = -0.5f; c <= 1.5f; c += 1.0f / 65536) ASSERT_EQ(to_byte(c), reference(c)) << c;
+    EXPECT_EQ(to_byte(std::numeric_limits<float>::quiet_NaN()), 0);
+    EXPECT_EQ(to_byte(std::numeric_limits<float>::infinity()), 255);
 }
 
 } // namespace

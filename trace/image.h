@@ -71,11 +71,12 @@ struct FloatImage {
     }
 };
 
-// The display value of a colour channel: clamped once to [0, 1], then round(255·c), halves away
-// from zero (std::lround's rule). x + 0.5 is exact in double for any float x in [0, 255], so
-// truncating it is lround(x), without lround's library call (a 1080p frame makes 6 million).
+// The display value of a colour channel: clamped once to [0, 1] (NaN to 0), then round(255·c),
+// halves away from zero (std::lround's rule). x + 0.5 is exact in double for any float x in
+// [0, 255], so truncating it is lround(x), without lround's library call (a 1080p frame makes 6
+// million).
 inline std::uint8_t to_byte(float c) {
-    const float x = 255.0f * glm::clamp(c, 0.0f, 1.0f);
+    const float x = 255.0f * (c > 0.0f ? (c < 1.0f ? c : 1.0f) : 0.0f);
     return static_cast<std::uint8_t>(static_cast<int>(static_cast<double>(x) + 0.5));
 }
 
