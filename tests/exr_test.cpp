@@ -190,12 +190,13 @@ TEST(FloatFrame, AGridKeepsTheUnclampedMeanBesideTheClampedOne) {
     const World world(scene);
     const RenderResult result = render(world);
     ASSERT_FALSE(result.clamped.empty());
-    std::vector<Hit> hits;
+    std::vector<Hit> hits(9);
     PrimaryStats unused;
     int differing = 0;
     for (int y = 0; y < 30; y += 3) {
         for (int x = 0; x < 40; x += 3) {
-            const GridPixel pixel = trace_grid(world, {}, x, y, hits, unused);
+            grid_hits(world, {}, x, y, hits.data(), unused);
+            const GridPixel pixel = shade_grid(world, x, y, hits.data());
             const std::size_t i = static_cast<std::size_t>(y) * 40 + x;
             for (int c = 0; c < 3; ++c) {
                 ASSERT_EQ(result.radiance.rgb[3 * i + c], static_cast<float>(pixel.radiance[c]));

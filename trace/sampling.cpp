@@ -119,13 +119,5 @@ GridPixel shade_grid(const World& world, int x, int y, const Hit* hits, RayRecor
     return pixel;
 }
 
-GridPixel trace_grid(const World& world, const PrimarySource& source, int x, int y,
-                     std::vector<Hit>& hits, PrimaryStats& stats) {
-    const auto n = static_cast<std::size_t>(world.settings().samples);
-    hits.resize(n * n);
-    grid_hits(world, source, x, y, hits.data(), stats);
-    return shade_grid(world, x, y, hits.data());
-}
-
 } // namespace GLINT_PRECISION
 } // namespace glint

@@ -54,10 +54,6 @@ struct GridPixel {
 GridPixel shade_grid(const World& world, int x, int y, const Hit* hits,
                      RayRecorder* recorder = nullptr, int recorded = -1);
 
-// Both for one pixel: grid_hits into `hits` (scratch space, made N² long), then shade_grid.
-GridPixel trace_grid(const World& world, const PrimarySource& source, int x, int y,
-                     std::vector<Hit>& hits, PrimaryStats& stats);
-
 // Rule 4's rounds: while adaptive_spread finds pixels to add (at most kMaxSpreadRounds times),
 // refine(next) puts their grids' means into `current` (it returns false to stop: cancelled),
 // and they are marked in `refined`. Returns how many pixels it added.
