@@ -16,7 +16,12 @@ namespace glint {
 namespace fs = std::filesystem;
 
 void SceneOptions::add_to(CLI::App& cmd) {
-    cmd.add_option("scene", scene, "Scene file: JSON, or NFF (.nff); default scenes/default.json");
+    cmd.add_option("scene", scene,
+                   "Scene file: JSON (.json), NFF (.nff), or a model: OBJ (.obj), glTF (.gltf, "
+                   ".glb); default scenes/default.json");
+    camera_option = cmd.add_option("--camera", camera,
+                                   "glTF: look through the file's camera N (default: its first)")
+                        ->check(CLI::NonNegativeNumber);
     cmd.add_option("--size", size, "Image size WIDTHxHEIGHT, overriding the scene's camera");
     cmd.add_option("--accel", accel,
                    "Acceleration structure: bvh (4-wide, SIMD), bvh2 (binary), spheres, grid, kd "
@@ -57,9 +62,10 @@ fs::path SceneOptions::scene_path() const {
 }
 
 Scene SceneOptions::load() const {
-    Scene loaded = load_scene_with_notes(scene_path());
-    if (!size.empty())
-        std::tie(loaded.camera.width, loaded.camera.height) = parse_size(size, "--size");
+    ModelOptions model;
+    if (camera_option->count()) model.camera = camera;
+    if (!size.empty()) model.size = parse_size(size, "--size");
+    Scene loaded = load_scene_with_notes(scene_path(), model);
     if (max_depth_option->count()) loaded.render.max_depth = max_depth;
     if (min_reflectivity_option->count())
         loaded.render.min_reflectivity = static_cast<float>(min_reflectivity);
@@ -256,10 +262,11 @@ int guarded(const std::function<int()>& body) {
     }
 }
 
-Scene load_scene_with_notes(const std::filesystem::path& path) {
-    Scene scene = load_scene(path);
+Scene load_scene_with_notes(const std::filesystem::path& path, const ModelOptions& options) {
+    Scene scene = load_scene(path, options);
     for (const std::string& note : scene.notes)
         std::cerr << "glint: note: " << path.string() << ": " << note << '\n';
+    for (const std::string& warning : scene.warnings) std::cerr << "glint: warning: " << warning << '\n';
     return scene;
 }
 

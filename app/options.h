@@ -5,7 +5,7 @@
 #include "app/commands.h"
 #include "frame/frame.h"
 
-#include "trace/scene.h"
+#include "trace/model_scene.h"
 
 #include <filesystem>
 #include <stdexcept>
@@ -32,6 +32,8 @@ struct SceneOptions {
     float aa_threshold = kDefaultAaThreshold;
     CLI::Option* samples_option = nullptr;
     CLI::Option* aa_threshold_option = nullptr;
+    int camera = 0;
+    CLI::Option* camera_option = nullptr;
 
     void add_to(CLI::App& cmd);
     std::filesystem::path scene_path() const; // the given scene, or scenes/default.json
@@ -81,9 +83,10 @@ inline constexpr int kMaxItemBufferSide = 16384;
 // One line for people: "4x4 samples, adaptive (threshold 0.02)"; empty for one sample.
 std::string describe_antialiasing(const RenderSettings& render);
 
-// Loads a scene (JSON or NFF) and prints what the loader left out or changed ("glint: note: …"
-// on stderr), as every command that renders a scene does.
-Scene load_scene_with_notes(const std::filesystem::path& path);
+// Loads a scene (any format load_scene reads) and prints what the loader left out or changed
+// ("glint: note: …") and what a model asked for that glint could not give it ("glint: warning:
+// …") on stderr, as every command that renders a scene does.
+Scene load_scene_with_notes(const std::filesystem::path& path, const ModelOptions& options = {});
 
 // Runs a command body, turning exceptions into glint's exit codes and one-line messages:
 // bad input 2, anything else 1.

@@ -499,10 +499,9 @@ std::vector<SceneResult> prepare(const TradeoffArgs& args) {
     }
     std::vector<SceneResult> results;
     for (const fs::path& path : scene_paths(args)) {
-        SceneResult sr{path.stem().string(), path, load_scene_with_notes(path), {}, {}, 0, 0};
-        if (!args.size.empty())
-            std::tie(sr.scene.camera.width, sr.scene.camera.height) =
-                parse_size(args.size, "--size");
+        ModelOptions model;
+        if (!args.size.empty()) model.size = parse_size(args.size, "--size");
+        SceneResult sr{path.stem().string(), path, load_scene_with_notes(path, model), {}, {}, 0, 0};
         // The exact image, its float twin and the run being measured are alive together, and
         // the antialiasing runs draw an item buffer of --samples² samples a pixel.
         Scene sampled = sr.scene;

@@ -1,5 +1,6 @@
 #include "frame/explain.h"
 
+#include "trace/scene_loader.h"
 #include "trace/shapes/table.h"
 #include "trace/transform.h"
 
@@ -89,10 +90,14 @@ std::string vec(DVec3 v, const char* format = "%.6g") {
     }
     return out + ")";
 }
+std::string num(double x, const char* format = "%.6g");
+std::string vec2(glm::vec2 v) {
+    return "(" + num(v.x) + ", " + num(v.y) + ")";
+}
 std::string colour(Vec3 c) {
     return vec(DVec3(c), "%.4f");
 }
-std::string num(double x, const char* format = "%.6g") {
+std::string num(double x, const char* format) {
     char text[32];
     std::snprintf(text, sizeof text, format, x);
     return text;
@@ -137,6 +142,16 @@ void write_ray(std::string& out, const Facts& facts, const PixelExplanation& e, 
     if (r.surface.shading != r.surface.normal)
         line("  shading normal (smooth mesh): " + vec(DVec3(r.surface.shading)));
     if (r.odd_cell) line("  checker: an odd cell, its colours in place of the material's");
+    if (r.texel) {
+        const TextureImage& image = *facts.world.material(o).texture->image;
+        const TexelSample& t = *r.texel;
+        line("  texture: " + printable(image.name) + " (" + std::to_string(image.width) + " × " +
+             std::to_string(image.height) + ") at uv " +
+             vec2(t.texel / glm::vec2(image.width, image.height)) + ": texel position " +
+             vec2(t.texel) + ", nearest texel [" + std::to_string(t.nearest.x) + ", " +
+             std::to_string(t.nearest.y) + "], bilinear colour " + colour(Vec3(t.colour)) +
+             " × the diffuse and ambient colours");
+    }
     line("  ambient  k_a·I_a = " + colour(r.ambient));
     Vec3 diffuse(0), specular(0);
     for (std::size_t k = 0; k < r.lights.size(); ++k) {
@@ -268,6 +283,15 @@ std::string explanation_json(const Scene& scene, const World& world, const Pixel
                           {"shading_normal", json_vec(DVec3(r.surface.shading))},
                           {"entering", r.surface.entering},
                           {"checker_odd", r.odd_cell}};
+            if (r.texel) {
+                const TextureImage& image = *world.material(o).texture->image;
+                ray["hit"]["texture"] = {
+                    {"image", printable(image.name)},
+                    {"size", {image.width, image.height}},
+                    {"texel", {r.texel->texel.x, r.texel->texel.y}},
+                    {"nearest", {r.texel->nearest.x, r.texel->nearest.y}},
+                    {"colour", json_vec(DVec3(Vec3(r.texel->colour)))}};
+            }
             ray["ambient"] = json_vec(DVec3(r.ambient));
             json lights = json::array();
             for (std::size_t k = 0; k < r.lights.size(); ++k) {

@@ -1,6 +1,7 @@
 // The glint command as a user meets it: what a successful render prints and writes, and every
 // class of bad input exiting 2 with its message while leaving no file behind and an existing
 // output untouched.
+#include "run_glint.h"
 #include "test_scenes.h"
 
 #include "trace/image.h"
@@ -19,39 +20,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Outcome {
-    int exit_code;
-    std::string out, err;
-};
+using testing::glint;
+using testing::Outcome;
+using testing::slurp;
+using testing::write;
 
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-// A fresh directory per test, so tests can run in parallel under ctest.
 fs::path fresh_dir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    fs::path dir = fs::path(::testing::TempDir()) / "glint_cli" /
-                   (std::string(info->test_suite_name()) + "." + info->name());
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
-
-Outcome glint(const fs::path& dir, const std::string& args, const std::string& environment = "") {
-    const std::string command = "cd '" + dir.string() + "' && " + environment +
-                                " '" GLINT_BINARY "' " + args +
-                                " >stdout.txt 2>stderr.txt </dev/null";
-    const int status = std::system(command.c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir / "stdout.txt"),
-            slurp(dir / "stderr.txt")};
-}
-
-void write(const fs::path& path, const std::string& text) {
-    std::ofstream(path) << text;
+    return testing::fresh_dir("glint_cli");
 }
 
 TEST(Cli, RenderWritesThePngAndReportsPathTimeAndRayCounts) {

@@ -157,7 +157,19 @@ TEST(Obj, NegativeIndicesCountBack) {
 
 // A material library that is missing or malformed is an error naming the file and line, as a
 // bad OBJ line is (issue: "a missing or malformed .mtl: exit 2 with the file and the line").
-TEST(Obj, AMissingOrMalformedMaterialLibraryNamesItsFileAndLine) {
+// A missing library is what a model only decorates itself with: a warning, default material.
+TEST(Obj, AMissingMaterialLibraryIsAWarningAndTheFacesGetTheDefaultMaterial) {
+    const ObjModel model = parse_obj(kTri + "mtllib m.mtl\nusemtl x\nf 1 2 3\n", "dir/m.obj",
+                                     [](const std::string&) { return std::optional<std::string>(); });
+    ASSERT_EQ(model.parts.size(), 1u);
+    EXPECT_FALSE(model.parts[0].material.has_value());
+    ASSERT_EQ(model.warnings.size(), 1u);
+    EXPECT_EQ(model.warnings[0],
+              "dir/m.obj:4: material library 'm.mtl' cannot be read: its materials are the "
+              "default one");
+}
+
+TEST(Obj, AMalformedMaterialLibraryNamesItsFileAndLine) {
     const auto error = [](const std::string& obj, const std::optional<std::string>& mtl) {
         try {
             parse_obj(obj, "dir/m.obj", [&](const std::string&) { return mtl; });
@@ -167,7 +179,8 @@ TEST(Obj, AMissingOrMalformedMaterialLibraryNamesItsFileAndLine) {
         return std::string("accepted");
     };
     const std::string obj = kTri + "mtllib m.mtl\nusemtl x\nf 1 2 3\n";
-    EXPECT_EQ(error(obj, std::nullopt), "dir/m.obj:4: material library 'm.mtl' cannot be read");
+    EXPECT_EQ(error(obj, "newmtl x\nKd 1 \x1b[2J 1\n"),
+              "dir/m.obj: dir/m.mtl:2: expected a number in Kd, got '\\x1b[2J'");
     EXPECT_EQ(error(obj, "newmtl x\nKd 1 0.5 zero\n"),
               "dir/m.obj: dir/m.mtl:2: expected a number in Kd, got 'zero'");
     EXPECT_EQ(error(obj, "newmtl x\nKd 1 1\n"), "dir/m.obj: dir/m.mtl:2: Kd needs 3 numbers, got 2");

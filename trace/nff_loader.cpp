@@ -58,7 +58,7 @@ class NffReader {
             } else if (word == "p" || word == "pp") {
                 polygon(*t, word == "pp");
             } else {
-                fail(t->line, "unknown entity '" + std::string(word.substr(0, 40)) +
+                fail(t->line, "unknown entity '" + printable(word, 40) +
                                   "' (NFF has v, b, l, f, c, s, p, pp)");
             }
         }
@@ -164,15 +164,15 @@ class NffReader {
     double number(const Token& entity, const char* what) {
         const std::optional<Token> t = next();
         if (!t)
-            fail(last_line_, "the file ends inside '" + std::string(entity.text) + "' (line " +
+            fail(last_line_, "the file ends inside '" + printable(entity.text) + "' (line " +
                                  std::to_string(entity.line) + "), before its " + what);
         double value = 0;
         if (!parse_number(t->text, value))
-            fail(t->line, "expected a number for " + std::string(entity.text) + "'s " + what +
-                              ", got '" + std::string(t->text.substr(0, 40)) + "'");
+            fail(t->line, "expected a number for " + printable(entity.text) + "'s " + what +
+                              ", got '" + printable(t->text, 40) + "'");
         if (std::abs(value) > kMaxCoordinate)
             fail(t->line,
-                 std::string(entity.text) + "'s " + what + " is beyond 1e15, too large for float");
+                 printable(entity.text) + "'s " + what + " is beyond 1e15, too large for float");
         return value;
     }
 
@@ -190,7 +190,7 @@ class NffReader {
     int integer_in(const Token& entity, const char* what, int lo, int hi) {
         const double v = number_in(entity, what, lo, hi);
         if (v != std::floor(v))
-            fail(last_line_, std::string(entity.text) + "'s " + what + " must be a whole number");
+            fail(last_line_, printable(entity.text) + "'s " + what + " must be a whole number");
         return static_cast<int>(v);
     }
 
@@ -211,7 +211,7 @@ class NffReader {
         if (!t || t->text != word)
             fail(last_line_, std::string("the view ('v', line ") + std::to_string(view.line) +
                                  ") needs '" + word + "' here" +
-                                 (t ? ", got '" + std::string(t->text.substr(0, 40)) + "'"
+                                 (t ? ", got '" + printable(t->text, 40) + "'"
                                     : ", but the file ends"));
         return *t;
     }

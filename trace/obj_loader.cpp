@@ -7,6 +7,7 @@
 
 #include "trace/polygon.h"
 #include "trace/scene_loader.h"
+#include "trace/texture.h"
 
 #include <tiny_obj_loader.h>
 
@@ -96,7 +97,7 @@ class LineChecker {
             double v = 0;
             if (!parse_number(w[i], v))
                 fail(line, "expected a number in " + std::string(w[0]) + ", got '" +
-                               std::string(w[i].substr(0, 40)) + "'");
+                               printable(w[i], 40) + "'");
             if (position && i <= 3 && std::abs(v) > kMaxCoordinate)
                 fail(line, "coordinate beyond 1e15, too large for float");
         }
@@ -129,7 +130,7 @@ class ObjChecker : public LineChecker {
             fail(line, std::string("expected a ") + what +
                            " index (1 or more, or negative from "
                            "the last), got '" +
-                           std::string(s.substr(0, 40)) + "'");
+                           printable(s, 40) + "'");
         const long long n = static_cast<long long>(count);
         if (i > n || i < -n)
             fail(line, std::string(what) + " index " + std::to_string(i) + " is beyond the " +
@@ -182,15 +183,15 @@ class ObjChecker : public LineChecker {
         } else if (k == "usemtl") {
             if (w.size() < 2) fail(line, "usemtl needs a material name");
         } else if (std::find(kIgnored.begin(), kIgnored.end(), k) == kIgnored.end()) {
-            fail(line, "unknown statement '" + std::string(k.substr(0, 40)) + "'");
+            fail(line, "unknown statement '" + printable(k, 40) + "'");
         }
     }
 
     std::size_t vertices_ = 0, normals_ = 0, texcoords_ = 0, faces_ = 0;
 };
 
-// MTL statements glint reads (docs/SCENES.md, "OBJ"), and those it reads past: texture maps
-// (glint has no textures), emission, and the PBR extension's parameters.
+// MTL statements glint reads (docs/SCENES.md, "OBJ"), and those it reads past with a warning:
+// texture maps other than map_Kd, emission, and the PBR extension's parameters.
 constexpr std::array<std::string_view, 5> kMtlColours = {"Ka", "Kd", "Ks", "Ke", "Tf"};
 constexpr std::array<std::string_view, 13> kMtlNumbers = {
     "Ns", "Ni", "d", "Tr", "illum", "sharpness", "Pr", "Pm", "Ps", "Pc", "Pcr", "aniso", "anisor"};
@@ -202,6 +203,9 @@ constexpr std::array<std::string_view, 16> kMtlMaps = {
 class MtlChecker : public LineChecker {
   public:
     using LineChecker::LineChecker;
+
+    // Statements read past, each with the first line it is on.
+    std::map<std::string, int> unused;
 
   private:
     static bool in(std::string_view k, const auto& set) {
@@ -218,10 +222,13 @@ class MtlChecker : public LineChecker {
         }
         const bool colour = in(k, kMtlColours), number = in(k, kMtlNumbers);
         if (!colour && !number && !in(k, kMtlMaps))
-            fail(line, "unknown MTL statement '" + std::string(k.substr(0, 40)) + "'");
+            fail(line, "unknown MTL statement '" + printable(k, 40) + "'");
         if (!named_) fail(line, std::string(k) + " before any newmtl");
         if (colour) numbers(w, line, 3, 3, false); // r g b (not spectral or xyz)
         if (number) numbers(w, line, 1, 1, false);
+        static constexpr std::array<std::string_view, 7> kRead = {"Ka", "Kd",    "Ks", "Ns",
+                                                                  "Ni", "d",     "Tr"};
+        if (k != "map_Kd" && k != "illum" && !in(k, kRead)) unused.emplace(k, line);
     }
 
     bool named_ = false;
@@ -231,7 +238,7 @@ glm::vec3 mtl_colour(const tinyobj::real_t (&c)[3], const std::string& what,
                      const std::string& material, const std::string& name) {
     for (const tinyobj::real_t v : c)
         if (!(v >= 0 && v <= kMaxColour))
-            throw SceneError(name + ": material '" + material + "': " + what +
+            throw SceneError(name + ": material '" + printable(material) + "': " + what +
                              " components must be between 0 and 1e6");
     return {c[0], c[1], c[2]};
 }
@@ -242,7 +249,7 @@ glm::vec3 mtl_colour(const tinyobj::real_t (&c)[3], const std::string& what,
 // 1 − d of the light, with Ni the index of refraction.
 Material mtl_material(const tinyobj::material_t& m, const std::string& name) {
     const auto fail = [&](const std::string& what) {
-        throw SceneError(name + ": material '" + m.name + "': " + what);
+        throw SceneError(name + ": material '" + printable(m.name) + "': " + what);
     };
     Material material;
     material.diffuse = mtl_colour(m.diffuse, "Kd", m.name, name);
@@ -264,11 +271,12 @@ Material mtl_material(const tinyobj::material_t& m, const std::string& name) {
     return material;
 }
 
-// One part being built: its vertices are the file's distinct (position, normal) pairs it uses.
+// One part being built: its vertices are the file's distinct (position, normal, texture
+// coordinate) triples it uses.
 struct PartBuilder {
     ObjPart part;
-    std::map<std::pair<int, int>, std::uint32_t> corners;
-    bool all_normals = true;
+    std::map<std::array<int, 3>, std::uint32_t> corners;
+    bool all_normals = true, all_uvs = true;
 };
 
 } // namespace
@@ -281,12 +289,24 @@ ObjModel parse_obj(const std::string& text, const std::string& name,
     std::string mtl_text;
     for (const auto& [library, line] : checker.libraries) {
         const auto t = read_mtl(library);
-        if (!t) checker.fail(line, "material library '" + library + "' cannot be read");
+        if (!t) {
+            model.warnings.push_back(name + ":" + std::to_string(line) + ": material library '" +
+                                     printable(library) +
+                                     "' cannot be read: its materials are the default one");
+            continue;
+        }
         // Named after the OBJ that uses it, as the OBJ is after the scene: "m.obj: m.mtl:2: …".
         MtlChecker mtl(name + ": " +
                        (std::filesystem::path(name).parent_path() / library).string());
         mtl.check(*t);
         mtl_text += mtl.clean;
+        if (!mtl.unused.empty()) {
+            std::string list;
+            for (const auto& [statement, at] : mtl.unused)
+                list += (list.empty() ? "" : ", ") + statement + " (line " + std::to_string(at) + ")";
+            model.warnings.push_back(name + ": " + printable(library) +
+                                     ": statements glint does not use: " + list);
+        }
     }
     if (checker.lines_and_points > 0)
         model.notes.push_back(name + ": " + std::to_string(checker.lines_and_points) +
@@ -323,17 +343,29 @@ ObjModel parse_obj(const std::string& text, const std::string& name,
                 // The checker bounded every index; this guards memory should the two readers
                 // ever disagree again.
                 if (!within(i.vertex_index, attrib.vertices) ||
-                    (i.normal_index >= 0 && !within(i.normal_index, attrib.normals)))
-                    throw SceneError(name + ": a face index is beyond the vertices or normals");
+                    (i.normal_index >= 0 && !within(i.normal_index, attrib.normals)) ||
+                    (i.texcoord_index >= 0 &&
+                     2 * static_cast<std::size_t>(i.texcoord_index) + 1 >= attrib.texcoords.size()))
+                    throw SceneError(name + ": a face index is beyond the vertices, normals or "
+                                            "texture coordinates");
                 const auto vi = static_cast<std::size_t>(i.vertex_index);
                 const glm::vec3 p(attrib.vertices[3 * vi], attrib.vertices[3 * vi + 1],
                                   attrib.vertices[3 * vi + 2]);
                 polygon.emplace_back(p);
                 const auto [it, added] =
-                    b.corners.emplace(std::make_pair(i.vertex_index, i.normal_index),
+                    b.corners.emplace(std::array{i.vertex_index, i.normal_index, i.texcoord_index},
                                       static_cast<std::uint32_t>(b.part.mesh.vertices.size()));
                 if (added) {
                     b.part.mesh.vertices.push_back(p);
+                    if (i.texcoord_index >= 0) {
+                        // OBJ's v runs up from the image's bottom row; glint's down from its top.
+                        const auto ti = static_cast<std::size_t>(i.texcoord_index);
+                        b.part.mesh.uvs.emplace_back(attrib.texcoords[2 * ti],
+                                                     1.0f - attrib.texcoords[2 * ti + 1]);
+                    } else {
+                        b.all_uvs = false;
+                        b.part.mesh.uvs.emplace_back(0.0f);
+                    }
                     if (i.normal_index >= 0) {
                         const auto ni = static_cast<std::size_t>(i.normal_index);
                         b.part.mesh.normals.emplace_back(attrib.normals[3 * ni],
@@ -363,12 +395,19 @@ ObjModel parse_obj(const std::string& text, const std::string& name,
             throw SceneError(name + ": more than 2^24 vertices or triangles in one material");
         // Smooth shading needs a normal at every vertex; a part with some missing is flat.
         if (!b.all_normals) b.part.mesh.normals.clear();
+        if (!b.all_uvs) b.part.mesh.uvs.clear(); // a texture needs them at every corner
         for (glm::vec3& n : b.part.mesh.normals)
             if (!std::isfinite(n.x + n.y + n.z)) n = glm::vec3(0.0f); // the facet stands in
         if (id >= 0) {
             const tinyobj::material_t& m = materials[static_cast<std::size_t>(id)];
             b.part.material = mtl_material(m, name);
             b.part.material_name = m.name;
+            b.part.texture_file = m.diffuse_texname;
+            if (m.diffuse_texopt.clamp) b.part.texture_wrap = Wrap::clamp;
+            if (!m.diffuse_texname.empty() && b.part.mesh.uvs.empty())
+                model.warnings.push_back(name + ": material '" + printable(m.name) +
+                                         "': map_Kd not used: its faces have no texture "
+                                         "coordinates (vt) at every corner");
         }
         model.parts.push_back(std::move(b.part));
     }
@@ -378,13 +417,26 @@ ObjModel parse_obj(const std::string& text, const std::string& name,
 ObjModel load_obj(const std::filesystem::path& path) {
     const std::string text = read_scene_file(path, "mesh file");
     const std::filesystem::path dir = path.parent_path();
-    return parse_obj(text, path.string(), [&](const std::string& library) {
+    ObjModel model = parse_obj(text, path.string(), [&](const std::string& library) {
         try {
             return std::optional<std::string>(read_scene_file(dir / library, "material library"));
         } catch (const SceneError&) {
             return std::optional<std::string>();
         }
     });
+    std::map<std::string, std::shared_ptr<const TextureImage>> images; // each file decoded once
+    for (ObjPart& part : model.parts) {
+        if (part.texture_file.empty() || part.mesh.uvs.empty()) continue;
+        auto [it, added] = images.emplace(part.texture_file, nullptr);
+        if (added)
+            if (auto image = load_texture(dir / part.texture_file,
+                                          path.string() + ": material '" +
+                                              printable(part.material_name) + "' map_Kd",
+                                          model.warnings))
+                it->second = std::make_shared<const TextureImage>(std::move(*image));
+        if (it->second) part.texture = Texture{it->second, part.texture_wrap, part.texture_wrap};
+    }
+    return model;
 }
 
 } // namespace glint

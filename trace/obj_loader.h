@@ -14,22 +14,28 @@ namespace glint {
 
 // One material's triangles of an OBJ file, in the file's coordinates.
 struct ObjPart {
-    TriangleMesh mesh;
+    TriangleMesh mesh; // with texture coordinates where every corner has one (v flipped: down)
     std::optional<Material> material; // from the MTL file; nothing: the scene's default
     std::string material_name;
+    std::string texture_file; // the MTL material's map_Kd as named, or empty
+    Wrap texture_wrap = Wrap::repeat; // map_Kd's -clamp on: clamp
+    std::optional<Texture> texture;   // map_Kd decoded (load_obj), where it could be
 };
 
 struct ObjModel {
     std::vector<ObjPart> parts;
-    std::vector<std::string> notes; // what was ignored (missing MTL file, lines and points, ...)
+    std::vector<std::string> notes;    // what was ignored (lines and points, ...)
+    std::vector<std::string> warnings; // what could not be used (a material library, a texture)
 };
 
 // `read_mtl(name)`: the text of a material library the OBJ names (`mtllib`), or nothing if it
-// cannot be read. Every error (SceneError) names `name` and the line.
+// cannot be read (a warning: its materials' faces get the default material). Every error
+// (SceneError) names `name` and the line.
 ObjModel parse_obj(const std::string& text, const std::string& name,
                    const std::function<std::optional<std::string>(const std::string&)>& read_mtl);
 
-// Reads the file and the material libraries next to it.
+// Reads the file, the material libraries next to it and their materials' textures (map_Kd,
+// relative to the OBJ file's directory; one that cannot be read or decoded is a warning).
 ObjModel load_obj(const std::filesystem::path& path);
 
 } // namespace glint

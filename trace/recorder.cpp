@@ -23,9 +23,10 @@ void RayRecorder::end(Vec3 colour) {
     open_.pop_back();
 }
 
-void RayRecorder::surface(const SurfacePoint& point, bool odd_cell, Vec3 ambient) {
+void RayRecorder::surface(const SurfacePoint& point, bool odd_cell,
+                          const std::optional<TexelSample>& texel, Vec3 ambient) {
     RecordedRay& node = open();
-    node.surface = point, node.odd_cell = odd_cell, node.ambient = ambient;
+    node.surface = point, node.odd_cell = odd_cell, node.texel = texel, node.ambient = ambient;
 }
 
 void RayRecorder::light(const LightTerm& term) {

@@ -4,6 +4,8 @@
 // arithmetic, written down as it happens (trace/explain.h adds what a reader needs around it).
 #pragma once
 
+#include "trace/texture.h"
+
 #include "trace/names.h"
 #include "trace/world.h"
 
@@ -49,6 +51,8 @@ struct RecordedRay {
     // At a hit (hit.found()):
     SurfacePoint surface;
     bool odd_cell = false; // the checker's odd cell: its colours replaced the material's
+    // The base colour texture's lookup, where the material has one and the mesh coordinates.
+    std::optional<TexelSample> texel;
     Vec3 ambient{0};       // k_a · I_a
     std::vector<LightTerm> lights;
     std::vector<int> children; // reflected, then transmitted
@@ -63,7 +67,8 @@ class RayRecorder {
     // `end` reports its colour, and what is reported meanwhile belongs to it.
     void begin(RayKind kind, const Ray& ray, const Hit& hit, Real factor, Real weight, int depth);
     void end(Vec3 colour);
-    void surface(const SurfacePoint& point, bool odd_cell, Vec3 ambient);
+    void surface(const SurfacePoint& point, bool odd_cell, const std::optional<TexelSample>& texel,
+                 Vec3 ambient);
     void light(const LightTerm& term);
     void omitted(RayKind kind, Real weight, OmittedRay::Why why);
 

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -57,6 +58,30 @@ inline bool usable_ior(double ior) {
     return ior > 0 && ior <= kMaxIor;
 }
 
+// How texture coordinates outside [0, 1] map into a texture (glTF's sampler wrap modes).
+enum class Wrap : std::uint8_t { repeat, clamp, mirror };
+
+template <> struct EnumNames<Wrap> {
+    static constexpr auto names = name_table("repeat", "clamp", "mirror");
+};
+
+// A decoded image: 8-bit RGB, rows from the top (texture coordinate v = 0), as the file stores
+// them. Its bytes are colours as glint's are, byte / 255, with no transfer curve (docs/SCENES.md,
+// "Textures").
+struct TextureImage {
+    std::string name; // the file or glTF image it came from, for messages and `glint explain`
+    int width = 0, height = 0;
+    std::vector<std::uint8_t> rgb; // width × height × 3
+};
+
+// A base colour texture: an image (shared by every texture that samples it) and how it wraps.
+struct Texture {
+    std::shared_ptr<const TextureImage> image;
+    Wrap wrap_s = Wrap::repeat, wrap_t = Wrap::repeat;
+};
+
+inline constexpr std::uint32_t kNoTexture = ~std::uint32_t{0};
+
 struct Material {
     glm::vec3 ambient{0.8f};
     glm::vec3 diffuse{0.8f};
@@ -66,6 +91,9 @@ struct Material {
     float transmission = 0.0f; // fraction of the transmitted ray's colour added
     float ior = 1.5f;          // index of refraction, where transmission > 0
     Checker checker;
+    // A base colour texture (index into Scene::textures): on meshes with texture coordinates,
+    // its colour multiplies the diffuse and ambient colours (docs/SCENES.md, "Textures").
+    std::uint32_t texture = kNoTexture;
 };
 
 // Triangles as given (counter-clockwise front), object space.
@@ -74,6 +102,8 @@ struct TriangleMesh {
     std::vector<glm::uvec3> triangles; // indices into vertices
     // One unit shading normal per vertex (smooth shading), or none (flat: the facet normal).
     std::vector<glm::vec3> normals;
+    // One texture coordinate per vertex (u right, v down from the image's top row), or none.
+    std::vector<glm::vec2> uvs;
 };
 
 struct SceneObject {
@@ -120,9 +150,13 @@ struct Scene {
     // than `objects` (unnamed ones at the end). Every part of an OBJ file has its object's name.
     std::vector<std::string> object_names;
     std::vector<TriangleMesh> meshes;
+    std::vector<Texture> textures;
     RenderSettings render;
     // What the loader left out or changed, for the user to read (NFF's transmission, ...).
     std::vector<std::string> notes;
+    // What a model file asked for that glint could not give it (a missing texture or material
+    // library): the model renders without it.
+    std::vector<std::string> warnings;
 };
 
 // Building blocks of a scene's transform list (column vectors: p' = M·p).

@@ -56,7 +56,7 @@ class Check {
             fail("camera/up", "up is parallel to the viewing direction");
     }
 
-    void material(const std::string& path, const Material& m) const {
+    void material(const std::string& path, const Material& m, const Scene& scene) const {
         colour(path + "/ambient", m.ambient);
         colour(path + "/diffuse", m.diffuse);
         colour(path + "/specular", m.specular);
@@ -69,6 +69,13 @@ class Check {
                 fail(path + "/checker/size", "must be above 0 and at most 1e15");
             colour(path + "/checker/diffuse", m.checker.diffuse);
             colour(path + "/checker/ambient", m.checker.ambient);
+        }
+        if (m.texture != kNoTexture) {
+            if (m.texture >= scene.textures.size()) fail(path + "/texture", "no such texture");
+            const TextureImage* image = scene.textures[m.texture].image.get();
+            if (!image || image->width <= 0 || image->height <= 0 ||
+                image->rgb.size() != std::size_t(image->width) * std::size_t(image->height) * 3)
+                fail(path + "/texture", "the texture has no pixels");
         }
     }
 
@@ -98,6 +105,13 @@ class Check {
             fail(path + "/normals", "has " + std::to_string(mesh.normals.size()) +
                                         " normals for " + std::to_string(mesh.vertices.size()) +
                                         " vertices");
+        if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.vertices.size())
+            fail(path + "/uvs", "has " + std::to_string(mesh.uvs.size()) +
+                                    " texture coordinates for " +
+                                    std::to_string(mesh.vertices.size()) + " vertices");
+        for (std::size_t v = 0; v < mesh.uvs.size(); ++v)
+            if (!std::isfinite(mesh.uvs[v].x) || !std::isfinite(mesh.uvs[v].y))
+                fail(path + "/uvs/" + std::to_string(v), "texture coordinates must be finite");
     }
 
     void object(const std::string& path, const SceneObject& o, const Scene& scene) const {
@@ -151,7 +165,7 @@ void check_scene(const Scene& scene, const ScenePlaces& places) {
         check.colour(path + "/color", scene.lights[i].color);
     }
     for (std::size_t k = 0; k < scene.materials.size(); ++k)
-        check.material("materials/" + std::to_string(k), scene.materials[k]);
+        check.material("materials/" + std::to_string(k), scene.materials[k], scene);
     check.render(scene.render);
     for (std::size_t m = 0; m < scene.meshes.size(); ++m)
         check.mesh("meshes/" + std::to_string(m), scene.meshes[m]);

@@ -1,5 +1,6 @@
 #include "trace/scene_loader.h"
 
+#include "trace/gltf_loader.h"
 #include "trace/obj_loader.h"
 #include "trace/scene_check.h"
 #include "trace/shapes/table.h"
@@ -11,11 +12,13 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <initializer_list>
 #include <map>
 #include <sstream>
+#include <tuple>
 
 namespace glint {
 namespace {
@@ -489,6 +492,10 @@ class Loader {
         for (ObjPart& part : model.parts) {
             std::uint32_t material = 0;
             if (part.material) {
+                if (part.texture) {
+                    part.material->texture = static_cast<std::uint32_t>(scene.textures.size());
+                    scene.textures.push_back(*part.texture);
+                }
                 material = static_cast<std::uint32_t>(scene.materials.size());
                 scene.materials.push_back(*part.material);
                 scene.material_names.push_back(given + ":" + part.material_name);
@@ -500,6 +507,7 @@ class Loader {
             mesh_places_.push_back({node.path, false});
         }
         scene.notes.insert(scene.notes.end(), model.notes.begin(), model.notes.end());
+        scene.warnings.insert(scene.warnings.end(), model.warnings.begin(), model.warnings.end());
         return obj_cache_.emplace(key, std::move(parts)).first->second;
     }
 
@@ -539,9 +547,9 @@ std::string bare_message(const json::exception& e) {
     return what;
 }
 
-// Refuses nesting deeper than kMaxJsonDepth at the bracket that goes too deep, before parsing:
-// no valid scene nests that far, and a million brackets should cost a message, not a stack.
-void check_nesting(const std::string& text, const std::string& name) {
+} // namespace
+
+void check_json_nesting(const std::string& text, const std::string& name, int limit) {
     int depth = 0;
     bool in_string = false, escaped = false;
     for (std::size_t i = 0; i < text.size(); ++i) {
@@ -556,19 +564,17 @@ void check_nesting(const std::string& text, const std::string& name) {
         } else if (c == '"') {
             in_string = true;
         } else if (c == '[' || c == '{') {
-            if (++depth > kMaxJsonDepth)
+            if (++depth > limit)
                 throw SceneError(place(name, text, i) + ": JSON nested deeper than " +
-                                 std::to_string(kMaxJsonDepth) + " levels");
+                                 std::to_string(limit) + " levels");
         } else if (c == ']' || c == '}') {
             --depth;
         }
     }
 }
 
-} // namespace
-
 Scene parse_scene(const std::string& text, const std::string& name) {
-    check_nesting(text, name);
+    check_json_nesting(text, name, kMaxJsonDepth); // no valid scene nests that far
     json root;
     try {
         root = json::parse(text);
@@ -590,6 +596,22 @@ Scene parse_scene(const std::string& text, const std::string& name) {
                          " (numbers must be finite doubles)");
     }
     return Loader(name).load(root);
+}
+
+std::string printable(std::string_view text, std::size_t limit) {
+    std::string out;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        if (i == limit) return out + "…";
+        const auto c = static_cast<unsigned char>(text[i]);
+        if (c >= 0x20 && c < 0x7f) {
+            out += static_cast<char>(c);
+        } else {
+            char escaped[8];
+            std::snprintf(escaped, sizeof escaped, "\\x%02x", c);
+            out += escaped;
+        }
+    }
+    return out;
 }
 
 bool parse_number(std::string_view token, double& value) {
@@ -622,12 +644,22 @@ std::string read_scene_file(const std::filesystem::path& path, const std::string
     return text;
 }
 
-Scene load_scene(const std::filesystem::path& path) {
+Scene load_scene(const std::filesystem::path& path, const ModelOptions& options) {
     const std::string name = path.string();
-    const std::string text = read_scene_file(path, "scene file");
     std::string extension = path.extension().string();
     for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return extension == ".nff" ? parse_nff(text, name) : parse_scene(text, name);
+    if (extension == ".gltf" || extension == ".glb") return load_gltf(path, options);
+    if (options.camera)
+        throw SceneError(name + ": --camera picks a glTF file's camera; this file has none");
+    if (extension == ".obj") return obj_scene(path, options);
+    // A name without an extension is read as a JSON scene, as it always was.
+    if (!extension.empty() && extension != ".json" && extension != ".nff")
+        throw SceneError(name + ": unknown scene format '" + printable(extension) +
+                         "': glint reads .json, .nff, .obj, .gltf and .glb");
+    const std::string text = read_scene_file(path, "scene file");
+    Scene scene = extension == ".nff" ? parse_nff(text, name) : parse_scene(text, name);
+    if (options.size) std::tie(scene.camera.width, scene.camera.height) = *options.size;
+    return scene;
 }
 
 } // namespace glint

@@ -2,7 +2,7 @@
 // Every error names the file and the JSON path (or, for malformed JSON, the line and column).
 #pragma once
 
-#include "trace/scene.h"
+#include "trace/model_scene.h"
 
 #include <filesystem>
 #include <stdexcept>
@@ -35,11 +35,22 @@ inline constexpr int kMaxJsonDepth = 32;
 // names it in errors ("scene file", "mesh file").
 std::string read_scene_file(const std::filesystem::path& path, const std::string& kind);
 
+// Text quoted from a file into a message, as printable ASCII: any other byte as \xNN (a
+// terminal must not receive a file's control bytes), and cut after `limit` bytes with "…".
+std::string printable(std::string_view text, std::size_t limit = 80);
+
 // A number as scene text writes it ("1", "-2.5e-3", "+4"): finite, the whole token.
 bool parse_number(std::string_view token, double& value);
 
-// JSON, or NFF when the name ends in .nff (any case).
-Scene load_scene(const std::filesystem::path& path);
+// The file a command is given as its scene, read by its extension (any case): .json, .nff, or a
+// model, .obj, .gltf or .glb (trace/model_scene.h); any other is an error naming the five.
+// `options.size` replaces the camera's image size before a model is framed; `options.camera`
+// picks a glTF camera and is an error for the other formats.
+Scene load_scene(const std::filesystem::path& path, const ModelOptions& options = {});
+
+// JSON text nested deeper than `limit` levels is refused at the bracket that goes too deep,
+// before it is parsed: a million brackets should cost a message, not a stack.
+void check_json_nesting(const std::string& text, const std::string& name, int limit);
 
 // `name` stands for the file in error messages.
 Scene parse_scene(const std::string& text, const std::string& name);

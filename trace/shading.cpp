@@ -1,6 +1,7 @@
 #include "trace/shading.h"
 
 #include "trace/recorder.h"
+#include "trace/texture.h"
 
 #include <algorithm>
 #include <cmath>
@@ -27,6 +28,16 @@ bool odd_cell(Real size, Vec3 q, bool in_plane) {
     double k = std::floor(q.x / s) + std::floor(q.z / s);
     if (!in_plane) k += std::floor(q.y / s);
     return std::fmod(k, 2.0) != 0;
+}
+
+// The base colour texture's lookup at a hit, where the material has a texture and the object is
+// a mesh with texture coordinates (docs/SCENES.md, "Textures"): at the hit's barycentrics, the
+// same in every pixel path, so hybrid and ray mode see the same texels.
+std::optional<TexelSample> texture_at(const World& world, const Phong& m, const Hit& hit) {
+    if (!m.texture) return std::nullopt;
+    const Mesh* mesh = world.objects()[hit.object].params.mesh;
+    if (!mesh || mesh->uvs.empty()) return std::nullopt;
+    return sample_texture(*m.texture, mesh_uv(*mesh, hit.primitive, hit.u, hit.v));
 }
 
 // The fraction of a light's colour that reaches a surface from `light` (docs/ARCHITECTURE.md,
@@ -75,13 +86,18 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoin
     const bool odd = m.checker_size > 0 &&
                      odd_cell(m.checker_size, surface.object_point,
                               shape_traits(world.objects()[hit.object].shape).checker_in_plane);
-    const Vec3 diffuse = odd ? m.checker_diffuse : m.diffuse;
-    const Vec3 ambient = odd ? m.checker_ambient : m.ambient;
+    Vec3 diffuse = odd ? m.checker_diffuse : m.diffuse;
+    Vec3 ambient = odd ? m.checker_ambient : m.ambient;
+    const std::optional<TexelSample> texel = texture_at(world, m, hit);
+    if (texel) {
+        diffuse *= Vec3(texel->colour);
+        ambient *= Vec3(texel->colour);
+    }
     tree.note((static_cast<std::uint64_t>(hit.object) + 1) * 2 + (odd ? 1 : 0));
     RayRecorder* const recorder = tree.recorder;
 
     Vec3 colour = ambient * world.ambient();
-    if (recorder) recorder->surface(surface, odd, colour);
+    if (recorder) recorder->surface(surface, odd, texel, colour);
     for (std::size_t j = 0; j < world.lights().size(); ++j) {
         const Light& light = world.lights()[j];
         const auto [l, n_dot_l] = light_direction(surface, light);

@@ -19,11 +19,12 @@ Bounds world_bounds(const std::pair<DVec3, DVec3>& local, const DMat4& m) {
 
 } // namespace
 
-SceneGeometry::SceneGeometry(const Scene& scene) {
+SceneGeometry::SceneGeometry(const Scene& scene) : textures(scene.textures) {
     for (const Material& m : scene.materials) {
         materials.push_back({Vec3(m.ambient), Vec3(m.diffuse), Vec3(m.specular), m.shininess,
                              m.reflectivity, m.transmission, m.ior, m.checker.size,
-                             Vec3(m.checker.diffuse), Vec3(m.checker.ambient)});
+                             Vec3(m.checker.diffuse), Vec3(m.checker.ambient),
+                             m.texture == kNoTexture ? nullptr : &textures[m.texture]});
         transmissive |= m.transmission > 0;
     }
     const Stopwatch watch;

@@ -34,6 +34,7 @@ struct Phong {
     Real shininess, reflectivity, transmission, ior;
     Real checker_size; // 0: none
     Vec3 checker_diffuse, checker_ambient;
+    const Texture* texture; // base colour texture (in SceneGeometry::textures), or none
 };
 
 struct Light {
@@ -92,6 +93,7 @@ struct SceneGeometry {
     explicit SceneGeometry(const Scene& scene);
 
     std::vector<Mesh> meshes;
+    std::vector<Texture> textures; // what Phong::texture points into
     std::vector<Phong> materials;
     bool transmissive = false; // some material transmits: shadow rays must count crossings
     double build_seconds = 0;  // the meshes' BVHs

@@ -17,6 +17,7 @@ struct Mesh {
     std::vector<Vec3> vertices;
     std::vector<glm::uvec3> triangles; // indices into vertices
     std::vector<Vec3> normals;         // per vertex, or empty (flat shading)
+    std::vector<glm::vec2> uvs;        // texture coordinates per vertex, or empty
     Bounds bounds;                     // of the vertices, object space
     WideBvh bvh;                       // over the triangles, object space
     // The three corners of each triangle side by side: one load per triangle instead of an
@@ -98,6 +99,7 @@ inline Mesh prepare_mesh(const TriangleMesh& given) {
         mesh.bounds.extend(mesh.vertices.back());
     }
     for (const glm::vec3& n : given.normals) mesh.normals.push_back(Vec3(n));
+    mesh.uvs = given.uvs;
     if (mesh.triangles.size() > 8) mesh.bvh = WideBvh(triangle_bounds(mesh));
     mesh.corners.reserve(mesh.triangles.size());
     for (std::uint32_t slot = 0; slot < mesh.triangles.size(); ++slot) {
@@ -156,6 +158,14 @@ inline SurfaceSample mesh_surface(const Mesh& mesh, std::uint32_t triangle, Real
     const Vec3 shading =
         b0 * mesh.normals[tri.x] + u * mesh.normals[tri.y] + v * mesh.normals[tri.z];
     return {point, facet, error, shading};
+}
+
+// The texture coordinates at barycentric weights (u, v) of triangle `triangle`, interpolated as
+// the surface is (mesh_surface); the mesh must have them.
+inline glm::vec2 mesh_uv(const Mesh& mesh, std::uint32_t triangle, Real u, Real v) {
+    const glm::uvec3 tri = mesh.triangles[triangle];
+    const float b1 = static_cast<float>(u), b2 = static_cast<float>(v);
+    return (1.0f - b1 - b2) * mesh.uvs[tri.x] + b1 * mesh.uvs[tri.y] + b2 * mesh.uvs[tri.z];
 }
 
 // Triangles and meshes in the shape table (trace/shapes/table.h): a triangle is a mesh of one

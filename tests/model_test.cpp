@@ -1,0 +1,292 @@
+// Models as scenes (docs/SCENES.md, "Models as scenes", "glTF", "Textures"): an OBJ with no
+// scene is framed and lit; textures show each texel where it should be, the same in both modes;
+// a glTF's sampler and coordinates are read; bad glTF input exits 2 naming the file and the
+// place, while what a model only decorates itself with is a warning.
+#include "gltf_builder.h"
+#include "run_glint.h"
+
+#include "trace/gltf_loader.h"
+#include "trace/image.h"
+#include "trace/scene_loader.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+
+namespace glint {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+using testing::GltfBuilder;
+using testing::glint;
+using testing::Outcome;
+using testing::write;
+
+fs::path fresh_dir() {
+    return testing::fresh_dir("glint_model");
+}
+
+// 4 × 4 texels, each a different colour: texel (x, y) is (60x + 15, 60y + 15, 255 − 40(x + y)).
+Image texel_grid() {
+    Image image(4, 4);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x) {
+            std::uint8_t* p = image.pixel(x, y);
+            p[0] = static_cast<std::uint8_t>(60 * x + 15);
+            p[1] = static_cast<std::uint8_t>(60 * y + 15);
+            p[2] = static_cast<std::uint8_t>(255 - 40 * (x + y));
+        }
+    return image;
+}
+
+// The shipped meshes, with no scene: the framing rule puts the model in the middle of the
+// frame, covering a fair part of it (at least a sixth of the pixels, and half the height or
+// width), and the default lights light it (no pixel of it black).
+TEST(Model, AnObjWithNoSceneIsFramedToFillAFairPartOfTheImage) {
+    const fs::path dir = fresh_dir();
+    for (const char* mesh : {"geosphere", "star"}) {
+        const Outcome r = glint(dir, std::string("render '" GLINT_SOURCE_DIR "/scenes/meshes/") +
+                                         mesh + ".obj' --mode ray --size 160x120 -o m.png");
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        const Image image = read_png(dir / "m.png");
+        int covered = 0, x0 = 160, x1 = -1, y0 = 120, y1 = -1;
+        for (int y = 0; y < 120; ++y)
+            for (int x = 0; x < 160; ++x) {
+                const std::uint8_t* p = image.pixel(x, y);
+                if (p[0] + p[1] + p[2] == 0) continue; // the background
+                ++covered;
+                x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+            }
+        EXPECT_GT(covered, 160 * 120 / 6) << mesh;
+        EXPECT_TRUE(y1 - y0 >= 60 || x1 - x0 >= 80) << mesh;
+        // Centred: the model's extent is balanced within a few pixels of the middle.
+        EXPECT_NEAR((x0 + x1) / 2.0, 80, 12) << mesh;
+        EXPECT_NEAR((y0 + y1) / 2.0, 60, 12) << mesh;
+    }
+}
+
+// A quad that exactly fills a 90° frame at distance 1, one pixel per texel, lit by ambient light
+// 1 alone: each pixel's colour is its texel's, byte for byte, in both modes.
+TEST(Model, ATexturedQuadShowsEachTexelWhereItShouldInBothModes) {
+    const fs::path dir = fresh_dir();
+    write_png(dir / "grid.png", texel_grid());
+    write(dir / "quad.mtl", "newmtl grid\nKd 1 1 1\nKs 0 0 0\nmap_Kd grid.png\n");
+    write(dir / "quad.obj", "mtllib quad.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"
+                            "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl grid\nf 1/1 2/2 3/3 4/4\n");
+    write(dir / "quad.json", R"({"camera": {"eye": [0, 0, 1], "look_at": [0, 0, 0], "fov_y": 90,
+                                             "width": 4, "height": 4},
+                                  "ambient": [1, 1, 1],
+                                  "objects": [{"shape": "mesh", "file": "quad.obj"}]})");
+    const Image grid = texel_grid();
+    for (const char* mode : {"ray", "hybrid"}) {
+        const Outcome r = glint(dir, std::string("render quad.json -o q.png --mode ") + mode);
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        const Image image = read_png(dir / "q.png");
+        EXPECT_EQ(image.rgb, grid.rgb) << mode;
+    }
+    // Larger, between texel centres (bilinear), and through explain: hybrid equals ray.
+    ASSERT_EQ(glint(dir, "render quad.json --size 37x29 -o ray.png --mode ray").exit_code, 0);
+    ASSERT_EQ(glint(dir, "render quad.json --size 37x29 -o hybrid.png --mode hybrid").exit_code, 0);
+    EXPECT_EQ(read_png(dir / "ray.png").rgb, read_png(dir / "hybrid.png").rgb);
+    const Outcome explain = glint(dir, "explain quad.json 1 2");
+    ASSERT_EQ(explain.exit_code, 0) << explain.err;
+    EXPECT_NE(explain.out.find("texture: grid.png (4 × 4) at uv (0.375, 0.625): texel position "
+                              "(1.5, 2.5), nearest texel [1, 2], bilinear colour (0.2941, 0.5294, "
+                              "0.5294)"),
+              std::string::npos)
+        << explain.out;
+}
+
+// A glTF quad with a base colour texture stored in the buffer: the image is decoded, the
+// sampler's wrap modes and TEXCOORD_0 are read, and hybrid equals ray byte for byte.
+TEST(Model, AGltfTextureIsReadWithItsSamplerAndCoordinates) {
+    const fs::path dir = fresh_dir();
+    GltfBuilder b;
+    const int texture = b.texture(encode_png(texel_grid()), {{"wrapS", 33071}, {"wrapT", 33648}});
+    b.doc["materials"].push_back(
+        {{"pbrMetallicRoughness",
+          {{"baseColorTexture", {{"index", texture}}}, {"metallicFactor", 0}}}});
+    const int mesh = b.mesh({-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0}, {0, 1, 2, 0, 2, 3}, 0,
+                            {0, 1, 1, 1, 1, 0, 0, 0});
+    b.node({{"mesh", mesh}});
+    const Scene scene = parse_gltf(b.glb(), "quad.glb", {});
+    ASSERT_EQ(scene.textures.size(), 1u);
+    EXPECT_EQ(scene.textures[0].wrap_s, Wrap::clamp);
+    EXPECT_EQ(scene.textures[0].wrap_t, Wrap::mirror);
+    EXPECT_EQ(scene.textures[0].image->rgb, texel_grid().rgb);
+    EXPECT_EQ(scene.materials.at(1).texture, 0u);
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    EXPECT_EQ(scene.meshes[0].uvs.at(2), glm::vec2(1, 0));
+    EXPECT_TRUE(scene.warnings.empty());
+    write(dir / "quad.glb", b.glb());
+    ASSERT_EQ(glint(dir, "render quad.glb --size 64x48 -o ray.png --mode ray").exit_code, 0);
+    ASSERT_EQ(glint(dir, "render quad.glb --size 64x48 -o hybrid.png --mode hybrid").exit_code, 0);
+    EXPECT_EQ(read_png(dir / "ray.png").rgb, read_png(dir / "hybrid.png").rgb);
+}
+
+// What a glTF only decorates itself with (a texture file that is missing, features glint does
+// not draw) is a warning; the model renders.
+TEST(Model, AMissingTextureAndUnusedFeaturesAreWarnings) {
+    const fs::path dir = fresh_dir();
+    GltfBuilder b;
+    b.doc["images"].push_back({{"uri", "missing.png"}});
+    b.doc["textures"].push_back({{"source", 0}});
+    b.doc["materials"].push_back({{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
+                                  {"emissiveFactor", {1, 0, 0}}});
+    b.node({{"mesh", b.mesh({0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 2}, 0, {0, 0, 1, 0, 0, 1})}});
+    write(dir / "m.gltf", b.gltf());
+    const Outcome r = glint(dir, "render m.gltf --size 32x24 -o m.png");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("glint: warning: m.gltf: /images/0: texture not used: cannot read "
+                         "'missing.png'"),
+              std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("emissiveFactor (/materials/0)"), std::string::npos) << r.err;
+}
+
+// Bad input: each case exits 2 naming the file and the place, and writes nothing.
+struct BadGltf {
+    std::string what;
+    std::function<std::string(GltfBuilder&)> make; // the file's bytes
+    std::string message;
+};
+
+GltfBuilder triangle() {
+    GltfBuilder b;
+    b.node({{"mesh", b.mesh({0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 2})}});
+    return b;
+}
+
+std::vector<BadGltf> bad_gltf() {
+    return {
+        {"missing buffer file", [](GltfBuilder& b) { return b.gltf_with_file("gone.bin"); },
+         "bad.gltf: /buffers/0/uri: cannot read 'gone.bin'"},
+        {"short buffer",
+         [](GltfBuilder& b) {
+             json d = json::parse(b.gltf());
+             d["buffers"][0]["byteLength"] = 4096;
+             return d.dump();
+         },
+         "bad.gltf: /buffers/0: its data URI holds 48 bytes, byteLength says 4096"},
+        {"accessor beyond its view",
+         [](GltfBuilder& b) {
+             b.doc["accessors"][0]["count"] = 40;
+             return b.gltf();
+         },
+         "bad.gltf: /accessors/0: 40 elements of 12 bytes, 12 apart from byte 0, run past the "
+         "end of /bufferViews/0 (36 bytes)"},
+        {"view beyond its buffer",
+         [](GltfBuilder& b) {
+             b.doc["bufferViews"][1]["byteOffset"] = 4000;
+             return b.gltf();
+         },
+         "bad.gltf: /bufferViews/1: bytes 4000 to 4012 are beyond buffer 0's 48 bytes"},
+        {"index out of range",
+         [](GltfBuilder& b) {
+             std::string bin = b.bin();
+             bin[40] = 7; // the second index
+             GltfBuilder c = b;
+             json d = json::parse(b.gltf());
+             d["buffers"][0]["uri"] = "data:application/octet-stream;base64," + GltfBuilder::base64(bin);
+             return d.dump();
+         },
+         "bad.gltf: /accessors/1: index 1 is 7, beyond the 3 vertices"},
+        {"NaN position",
+         [](GltfBuilder& b) {
+             std::string bin = b.bin();
+             const std::uint32_t nan = 0x7fc00000;
+             std::memcpy(&bin[16], &nan, 4); // vertex 1's y
+             json d = json::parse(b.gltf());
+             d["buffers"][0]["uri"] = "data:application/octet-stream;base64," + GltfBuilder::base64(bin);
+             return d.dump();
+         },
+         "bad.gltf: /accessors/0, element 1: coordinates must be within ±1e15"},
+        {"node cycle",
+         [](GltfBuilder& b) {
+             b.node({{"children", {0}}}, false);
+             b.doc["nodes"][0]["children"] = {1};
+             return b.gltf();
+         },
+         "bad.gltf: /nodes/1/children/0: node 0 is an ancestor of node 1: the node graph has a "
+         "cycle"},
+        {"required extension",
+         [](GltfBuilder& b) {
+             b.doc["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+             return b.gltf();
+         },
+         "bad.gltf: /extensionsRequired/0: requires extension 'KHR_draco_mesh_compression', "
+         "which glint does not support"},
+        {"truncated GLB",
+         [](GltfBuilder& b) {
+             const std::string glb = b.glb();
+             return glb.substr(0, 60);
+         },
+         "bytes, the file has 60"},
+        {"control bytes quoted",
+         [](GltfBuilder& b) {
+             b.doc["extensionsRequired"] = {"\x1b[31mred"};
+             return b.gltf();
+         },
+         "bad.gltf: /extensionsRequired/0: requires extension '\\x1b[31mred', which glint does "
+         "not support"},
+    };
+}
+
+TEST(Model, BadGltfInputNamesTheFileAndThePlace) {
+    for (const BadGltf& c : bad_gltf()) {
+        GltfBuilder b = triangle();
+        const std::string bytes = c.make(b);
+        try {
+            parse_gltf(bytes, "bad.gltf", [](const std::string&, std::string& why) {
+                why = "No such file or directory";
+                return std::optional<std::string>();
+            });
+            ADD_FAILURE() << c.what << ": accepted";
+        } catch (const SceneError& e) {
+            EXPECT_NE(std::string(e.what()).find(c.message), std::string::npos)
+                << c.what << ":\n" << e.what();
+        }
+    }
+}
+
+TEST(Model, BadModelFilesExitTwoAndWriteNothing) {
+    const fs::path dir = fresh_dir();
+    GltfBuilder b = triangle();
+    b.node({{"children", {0}}}, false);
+    b.doc["nodes"][0]["children"] = {1};
+    write(dir / "cycle.gltf", b.gltf());
+    write(dir / "model.fbx", "Kaydara FBX Binary");
+    for (const char* file : {"cycle.gltf", "model.fbx"}) {
+        const Outcome r = glint(dir, std::string("render ") + file + " -o out.png");
+        EXPECT_EQ(r.exit_code, 2) << file << r.err;
+        EXPECT_FALSE(fs::exists(dir / "out.png")) << file;
+        EXPECT_NE(r.err.find(file), std::string::npos) << r.err;
+    }
+}
+
+TEST(Model, CameraPicksAGltfCameraAndIsRefusedElsewhere) {
+    const fs::path dir = fresh_dir();
+    GltfBuilder b = triangle();
+    for (double y : {0.5, 0.25}) {
+        b.doc["cameras"].push_back({{"type", "perspective"}, {"perspective", {{"yfov", y}, {"znear", 0.1}}}});
+        b.node({{"camera", b.doc["cameras"].size() - 1}, {"translation", {0, 0, 5}}});
+    }
+    const std::string bytes = b.gltf();
+    EXPECT_NEAR(parse_gltf(bytes, "c.gltf", {}).camera.fov_y, 0.5 * 180 / M_PI, 1e-9);
+    EXPECT_NEAR(parse_gltf(bytes, "c.gltf", {}, {.camera = 1, .size = std::nullopt}).camera.fov_y, 0.25 * 180 / M_PI, 1e-9);
+    write(dir / "c.gltf", bytes);
+    Outcome r = glint(dir, "render c.gltf --camera 2 -o c.png");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("c.gltf: --camera 2: the file has 2 camera(s), 0 to 1"), std::string::npos)
+        << r.err;
+    r = glint(dir, "render '" GLINT_SOURCE_DIR "/scenes/default.json' --camera 0 -o c.png");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("--camera picks a glTF file's camera"), std::string::npos) << r.err;
+}
+
+} // namespace
+} // namespace glint

@@ -1,0 +1,1032 @@
+#include "trace/gltf_loader.h"
+
+#include "trace/model_scene.h"
+#include "trace/scene_check.h"
+#include "trace/scene_loader.h"
+#include "trace/shapes/table.h"
+#include "trace/texture.h"
+
+// As trace/tinygltf.cpp compiles it: images are glint's to decode.
+#define TINYGLTF_NO_STB_IMAGE
+#define TINYGLTF_NO_STB_IMAGE_WRITE
+#define TINYGLTF_NO_EXTERNAL_IMAGE
+#include <tiny_gltf.h>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <numbers>
+#include <set>
+#include <tuple>
+
+namespace glint {
+namespace {
+
+using json = nlohmann::json;
+
+// Extensions glint reads; a file that requires any other is refused.
+const std::set<std::string> kKnownExtensions = {"KHR_lights_punctual",
+                                                "KHR_materials_transmission", "KHR_materials_ior"};
+// Objects a model may place (nodes × primitives): beyond, a small file would fill the memory.
+constexpr std::size_t kMaxModelObjects = std::size_t{1} << 22;
+// A glTF nests no deeper than its extras do; this bounds the parser's stack.
+constexpr int kMaxGltfJsonDepth = 64;
+
+constexpr std::uint32_t kGlbMagic = 0x46546C67, kJsonChunk = 0x4E4F534A, kBinChunk = 0x004E4942;
+
+std::uint32_t le32(const std::string& bytes, std::size_t at) {
+    std::uint32_t v = 0;
+    for (int i = 3; i >= 0; --i) v = (v << 8) | static_cast<unsigned char>(bytes[at + i]);
+    return v;
+}
+
+std::string pointer(const std::string& array, std::size_t index) {
+    return "/" + array + "/" + std::to_string(index);
+}
+
+// The URI as a file name: %XX decoded, as tinygltf decodes it before asking for the file.
+std::string decode_uri(const std::string& uri) {
+    std::string out;
+    for (std::size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(uri[i + 1]) &&
+            std::isxdigit(uri[i + 2])) {
+            out += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+            i += 2;
+        } else {
+            out += uri[i];
+        }
+    }
+    return out;
+}
+
+bool is_data_uri(const std::string& uri) {
+    return uri.rfind("data:", 0) == 0;
+}
+
+// The bytes a base64 data URI holds, or nothing if it is not one glint can count.
+std::optional<std::size_t> data_uri_bytes(const std::string& uri) {
+    const std::size_t comma = uri.find(',');
+    if (comma == std::string::npos || uri.rfind(";base64", comma) == std::string::npos)
+        return std::nullopt;
+    std::size_t n = uri.size() - comma - 1;
+    std::size_t padding = 0;
+    while (padding < 2 && n > 0 && uri[comma + n - padding] == '=') ++padding;
+    return n / 4 * 3 - (n % 4 == 0 ? padding : 0) + (n % 4 == 0 ? 0 : (n % 4) * 3 / 4);
+}
+
+// Everything tinygltf would read unchecked or that glint names places for: the GLB container,
+// the JSON's nesting, required extensions, the buffers' sizes against their files, and the
+// byte ranges of images stored in buffer views (tinygltf hands those to the image callback
+// without a bound). Returns the external buffers' bytes, read once, by decoded URI.
+class Precheck {
+  public:
+    Precheck(const std::string& bytes, const std::string& name, const ModelFiles& files)
+        : bytes_(bytes), name_(name), files_(files) {}
+
+    std::map<std::string, std::vector<unsigned char>> run(bool& glb, std::vector<std::string>& warnings) {
+        glb = bytes_.size() >= 4 && le32(bytes_, 0) == kGlbMagic;
+        std::string text = glb ? glb_json() : bytes_;
+        check_json_nesting(text, name_, kMaxGltfJsonDepth);
+        try {
+            root_ = json::parse(text);
+        } catch (const json::exception& e) {
+            fail("", std::string("malformed JSON: ") + e.what());
+        }
+        if (!root_.is_object()) fail("/", "a glTF file is a JSON object");
+        extensions(warnings);
+        std::map<std::string, std::vector<unsigned char>> files;
+        const json& buffers = array("buffers");
+        for (std::size_t b = 0; b < buffers.size(); ++b) buffer(b, buffers[b], files);
+        const json& images = array("images");
+        for (std::size_t i = 0; i < images.size(); ++i)
+            if (images[i].is_object() && images[i].contains("bufferView"))
+                image_view(i, images[i]["bufferView"]);
+        return files;
+    }
+
+  private:
+    [[noreturn]] void fail(const std::string& place, const std::string& what) const {
+        throw SceneError(name_ + ": " + (place.empty() ? "" : place + ": ") + what);
+    }
+
+    const json& array(const char* key) const {
+        static const json empty = json::array();
+        if (!root_.contains(key)) return empty;
+        if (!root_[key].is_array()) fail(std::string("/") + key, "must be an array");
+        return root_[key];
+    }
+
+    // GLB (glTF 2.0 §4.4): a 12-byte header, a JSON chunk, an optional BIN chunk.
+    std::string glb_json() const {
+        if (bytes_.size() < 20) fail("GLB header", "the file is shorter than a GLB header");
+        if (le32(bytes_, 4) != 2)
+            fail("GLB header", "version " + std::to_string(le32(bytes_, 4)) + ", glint reads 2");
+        const std::uint64_t length = le32(bytes_, 8);
+        if (length != bytes_.size())
+            fail("GLB header", "says " + std::to_string(length) + " bytes, the file has " +
+                                   std::to_string(bytes_.size()));
+        const std::uint64_t json_length = le32(bytes_, 12);
+        if (le32(bytes_, 16) != kJsonChunk) fail("GLB chunk 0", "is not the JSON chunk");
+        if (json_length == 0 || 20 + json_length > length)
+            fail("GLB chunk 0", "its length " + std::to_string(json_length) +
+                                    " runs past the end of the file");
+        const std::uint64_t rest = length - 20 - json_length;
+        if (rest > 0) {
+            if (rest < 8) fail("GLB chunk 1", "a chunk header is cut short");
+            const std::uint64_t bin_length = le32(bytes_, 20 + json_length);
+            if (le32(bytes_, 24 + json_length) != kBinChunk)
+                fail("GLB chunk 1", "is not the BIN chunk");
+            if (8 + bin_length > rest)
+                fail("GLB chunk 1", "its length " + std::to_string(bin_length) +
+                                        " runs past the end of the file");
+            bin_length_ = bin_length;
+        }
+        return bytes_.substr(20, json_length);
+    }
+
+    void extensions(std::vector<std::string>& warnings) const {
+        for (const char* key : {"extensionsRequired", "extensionsUsed"}) {
+            const json& list = array(key);
+            for (std::size_t i = 0; i < list.size(); ++i) {
+                if (!list[i].is_string()) fail(pointer(key, i), "must be a string");
+                const std::string name = list[i];
+                if (kKnownExtensions.contains(name)) continue;
+                if (key == std::string("extensionsRequired"))
+                    fail(pointer(key, i), "requires extension '" + printable(name) +
+                                              "', which glint does not support");
+                warnings.push_back(name_ + ": " + pointer(key, i) + ": extension '" +
+                                   printable(name) + "' not used: the model renders without it");
+            }
+        }
+    }
+
+    static std::optional<std::uint64_t> count(const json& o, const char* key) {
+        if (!o.contains(key)) return std::nullopt;
+        if (!o[key].is_number_unsigned()) return std::nullopt;
+        return o[key].get<std::uint64_t>();
+    }
+
+    void buffer(std::size_t b, const json& o,
+                std::map<std::string, std::vector<unsigned char>>& files) const {
+        const std::string at = pointer("buffers", b);
+        if (!o.is_object()) fail(at, "must be an object");
+        const std::optional<std::uint64_t> length = count(o, "byteLength");
+        if (!length) fail(at + "/byteLength", "must be given, a whole number of bytes");
+        byte_lengths_.push_back(*length);
+        if (!o.contains("uri")) {
+            if (b != 0 || !bin_length_)
+                fail(at, "has no uri, and is not the first buffer of a GLB with a BIN chunk");
+            if (*length > *bin_length_)
+                fail(at + "/byteLength", "is " + std::to_string(*length) +
+                                             ", beyond the BIN chunk's " +
+                                             std::to_string(*bin_length_) + " bytes");
+            return;
+        }
+        if (!o["uri"].is_string()) fail(at + "/uri", "must be a string");
+        const std::string uri = o["uri"];
+        if (is_data_uri(uri)) {
+            const std::optional<std::size_t> held = data_uri_bytes(uri);
+            if (!held) fail(at + "/uri", "a data URI must be base64 (data:…;base64,…)");
+            if (*held < *length)
+                fail(at, "its data URI holds " + std::to_string(*held) + " bytes, byteLength says " +
+                             std::to_string(*length));
+            return;
+        }
+        const std::string file = decode_uri(uri);
+        if (files.contains(file)) return;
+        std::string why;
+        const std::optional<std::string> data = files_(file, why);
+        if (!data) fail(at + "/uri", "cannot read '" + printable(file) + "': " + why);
+        if (data->size() < *length)
+            fail(at, "'" + printable(file) + "' holds " + std::to_string(data->size()) +
+                         " bytes, byteLength says " + std::to_string(*length));
+        files.emplace(file, std::vector<unsigned char>(data->begin(), data->end()));
+    }
+
+    void image_view(std::size_t i, const json& index) const {
+        const std::string at = pointer("images", i) + "/bufferView";
+        const json& views = array("bufferViews");
+        if (!index.is_number_unsigned() || index.get<std::uint64_t>() >= views.size())
+            fail(at, "no such buffer view");
+        const std::size_t v = index.get<std::size_t>();
+        const json& view = views[v];
+        const std::string view_at = pointer("bufferViews", v);
+        if (!view.is_object()) fail(view_at, "must be an object");
+        const std::optional<std::uint64_t> buffer = count(view, "buffer");
+        if (!buffer || *buffer >= byte_lengths_.size()) fail(view_at + "/buffer", "no such buffer");
+        const std::uint64_t offset = count(view, "byteOffset").value_or(0);
+        const std::optional<std::uint64_t> length = count(view, "byteLength");
+        if (!length) fail(view_at + "/byteLength", "must be given, a whole number of bytes");
+        const std::uint64_t size = byte_lengths_[*buffer];
+        if (*length > size || offset > size - *length)
+            fail(view_at, "bytes " + std::to_string(offset) + " to " +
+                              std::to_string(offset + *length) + " are beyond buffer " +
+                              std::to_string(*buffer) + "'s " + std::to_string(size) + " bytes");
+    }
+
+    const std::string& bytes_;
+    const std::string& name_;
+    const ModelFiles& files_;
+    json root_;
+    mutable std::optional<std::uint64_t> bin_length_;
+    mutable std::vector<std::uint64_t> byte_lengths_;
+};
+
+// tinygltf's hooks: images kept as their encoded bytes (decoded by glint when a material uses
+// them), external buffers served from what Precheck read.
+bool keep_image_bytes(tinygltf::Image* image, int, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, int size, void*) {
+    image->image.assign(bytes, bytes + size);
+    image->as_is = true;
+    return true;
+}
+bool any_file_exists(const std::string&, void*) {
+    return true; // asked before reading: ReadWholeFile answers
+}
+std::string same_path(const std::string& path, void*) {
+    return path;
+}
+bool read_prechecked(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+                     void* user) {
+    const auto& files = *static_cast<std::map<std::string, std::vector<unsigned char>>*>(user);
+    const auto it = files.find(path);
+    if (it == files.end()) {
+        if (err) *err += "cannot read '" + path + "'\n";
+        return false;
+    }
+    *out = it->second;
+    return true;
+}
+bool write_nothing(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+    if (err) *err += "glint does not write glTF files\n";
+    return false;
+}
+
+// glint's reading of a parsed model: its accessors checked and read, its node tree walked into
+// placed meshes, its materials mapped to Phong (docs/SCENES.md, "glTF").
+class Reader {
+  public:
+    Reader(const tinygltf::Model& model, const std::string& name, const ModelFiles& files,
+           const ModelOptions& options, std::vector<std::string> warnings)
+        : m_(model), name_(name), files_(files), options_(options) {
+        scene_.warnings = std::move(warnings);
+    }
+
+    Scene read() {
+        if (options_.size) std::tie(scene_.camera.width, scene_.camera.height) = *options_.size;
+        scene_.materials.emplace_back(); // 0: glint's default, for primitives with no material
+        scene_.material_names.emplace_back("default");
+        material_places_.emplace_back("the default material");
+        walk_nodes();
+        camera();
+        lights();
+        if (!unused_.empty()) {
+            std::string list;
+            for (const auto& [feature, place] : unused_)
+                list += (list.empty() ? "" : ", ") + feature + " (" + place + ")";
+            scene_.warnings.push_back(name_ + ": glTF features glint does not use, the model " +
+                                      "renders without them: " + list);
+        }
+        check_scene(scene_, [this](const std::string& path) { return place_of(path); });
+        return std::move(scene_);
+    }
+
+  private:
+    [[noreturn]] void fail(const std::string& place, const std::string& what) const {
+        throw SceneError(name_ + ": " + place + ": " + what);
+    }
+    void unused(const std::string& feature, const std::string& place) {
+        unused_.emplace(feature, place); // the first place of each
+    }
+
+    // ---- accessors -------------------------------------------------------------------------
+
+    static int component_bytes(int type) {
+        switch (type) {
+        case TINYGLTF_COMPONENT_TYPE_BYTE:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+        case TINYGLTF_COMPONENT_TYPE_SHORT:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+        default: return 0;
+        }
+    }
+
+    static double component(const unsigned char* p, int type, bool normalized) {
+        switch (type) {
+        case TINYGLTF_COMPONENT_TYPE_BYTE: {
+            const auto v = static_cast<std::int8_t>(*p);
+            return normalized ? std::max(v / 127.0, -1.0) : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? *p / 255.0 : *p;
+        case TINYGLTF_COMPONENT_TYPE_SHORT: {
+            std::int16_t v;
+            std::memcpy(&v, p, 2);
+            return normalized ? std::max(v / 32767.0, -1.0) : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+            std::uint16_t v;
+            std::memcpy(&v, p, 2);
+            return normalized ? v / 65535.0 : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+            std::uint32_t v;
+            std::memcpy(&v, p, 4);
+            return v;
+        }
+        default: {
+            float v;
+            std::memcpy(&v, p, 4);
+            return v;
+        }
+        }
+    }
+
+    // The bytes of buffer view `view` from `offset`, for `count` elements of `element` bytes
+    // `stride` apart: checked against the view and its buffer, and returned.
+    const unsigned char* view_bytes(int view, std::size_t offset, std::size_t count,
+                                    std::size_t element, std::size_t stride,
+                                    const std::string& at) const {
+        if (view < 0 || static_cast<std::size_t>(view) >= m_.bufferViews.size())
+            fail(at, "no buffer view " + std::to_string(view));
+        const tinygltf::BufferView& v = m_.bufferViews[static_cast<std::size_t>(view)];
+        const std::string view_at = pointer("bufferViews", static_cast<std::size_t>(view));
+        if (v.buffer < 0 || static_cast<std::size_t>(v.buffer) >= m_.buffers.size())
+            fail(view_at + "/buffer", "no buffer " + std::to_string(v.buffer));
+        const std::size_t size = m_.buffers[static_cast<std::size_t>(v.buffer)].data.size();
+        if (v.byteLength > size || v.byteOffset > size - v.byteLength)
+            fail(view_at, "bytes " + std::to_string(v.byteOffset) + " to " +
+                              std::to_string(v.byteOffset + v.byteLength) + " are beyond buffer " +
+                              std::to_string(v.buffer) + "'s " + std::to_string(size) + " bytes");
+        if (count > 0 && (element > v.byteLength || offset > v.byteLength - element ||
+                          (count - 1) > (v.byteLength - element - offset) / stride))
+            fail(at, std::to_string(count) + " elements of " + std::to_string(element) +
+                         " bytes, " + std::to_string(stride) + " apart from byte " +
+                         std::to_string(offset) + ", run past the end of " + view_at + " (" +
+                         std::to_string(v.byteLength) + " bytes)");
+        return m_.buffers[static_cast<std::size_t>(v.buffer)].data.data() + v.byteOffset + offset;
+    }
+
+    // Accessor `index`, named by `use` (where it is referred to), read as `width` components per
+    // element, each converted to double: every bound checked first, sparse values applied.
+    std::vector<double> read_accessor(int index, int type, int width,
+                                      std::initializer_list<int> component_types,
+                                      const std::string& use, std::size_t max_count) const {
+        if (index < 0 || static_cast<std::size_t>(index) >= m_.accessors.size())
+            fail(use, "no accessor " + std::to_string(index));
+        const tinygltf::Accessor& a = m_.accessors[static_cast<std::size_t>(index)];
+        const std::string at = pointer("accessors", static_cast<std::size_t>(index));
+        if (a.type != type)
+            fail(at + "/type", "is not the type " + use + " needs (" +
+                                   (type == TINYGLTF_TYPE_SCALAR ? "SCALAR"
+                                                                 : "VEC" + std::to_string(width)) +
+                                   ")");
+        if (std::find(component_types.begin(), component_types.end(), a.componentType) ==
+            component_types.end())
+            fail(at + "/componentType", "component type " + std::to_string(a.componentType) +
+                                            " is not one " + use + " may have");
+        if (a.count == 0) fail(at + "/count", "must be at least 1");
+        if (a.count > max_count)
+            fail(at + "/count", std::to_string(a.count) + " elements; the limit is " +
+                                    std::to_string(max_count));
+        const std::size_t bytes = static_cast<std::size_t>(component_bytes(a.componentType));
+        const std::size_t element = bytes * static_cast<std::size_t>(width);
+        std::vector<double> out(a.count * static_cast<std::size_t>(width), 0.0);
+        if (a.bufferView >= 0) {
+            if (static_cast<std::size_t>(a.bufferView) >= m_.bufferViews.size())
+                fail(at + "/bufferView", "no buffer view " + std::to_string(a.bufferView));
+            const tinygltf::BufferView& v = m_.bufferViews[static_cast<std::size_t>(a.bufferView)];
+            const std::size_t stride = v.byteStride ? v.byteStride : element;
+            if (v.byteStride && (v.byteStride < element || v.byteStride % bytes != 0))
+                fail(pointer("bufferViews", static_cast<std::size_t>(a.bufferView)) + "/byteStride",
+                     "a stride of " + std::to_string(v.byteStride) + " bytes cannot hold " +
+                         at + "'s elements of " + std::to_string(element));
+            const unsigned char* p =
+                view_bytes(a.bufferView, a.byteOffset, a.count, element, stride, at);
+            for (std::size_t i = 0; i < a.count; ++i)
+                for (int c = 0; c < width; ++c)
+                    out[i * width + c] =
+                        component(p + i * stride + c * bytes, a.componentType, a.normalized);
+        }
+        if (a.sparse.isSparse) {
+            const std::string sparse_at = at + "/sparse";
+            if (a.sparse.count < 1 || static_cast<std::size_t>(a.sparse.count) > a.count)
+                fail(sparse_at + "/count", "must be 1 to the accessor's count");
+            const auto n = static_cast<std::size_t>(a.sparse.count);
+            const int index_type = a.sparse.indices.componentType;
+            const int index_bytes = component_bytes(index_type);
+            if (index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+                index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+                index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+                fail(sparse_at + "/indices/componentType", "must be an unsigned integer type");
+            if (a.sparse.indices.byteOffset < 0 || a.sparse.values.byteOffset < 0)
+                fail(sparse_at, "byte offsets must not be negative");
+            const unsigned char* indices =
+                view_bytes(a.sparse.indices.bufferView,
+                           static_cast<std::size_t>(a.sparse.indices.byteOffset), n,
+                           static_cast<std::size_t>(index_bytes),
+                           static_cast<std::size_t>(index_bytes), sparse_at + "/indices");
+            const unsigned char* values =
+                view_bytes(a.sparse.values.bufferView,
+                           static_cast<std::size_t>(a.sparse.values.byteOffset), n, element,
+                           element, sparse_at + "/values");
+            for (std::size_t k = 0; k < n; ++k) {
+                const auto target =
+                    static_cast<std::size_t>(component(indices + k * index_bytes, index_type, false));
+                if (target >= a.count)
+                    fail(sparse_at + "/indices", "index " + std::to_string(k) + " is " +
+                                                     std::to_string(target) + ", beyond count " +
+                                                     std::to_string(a.count));
+                for (int c = 0; c < width; ++c)
+                    out[target * width + c] =
+                        component(values + k * element + c * bytes, a.componentType, a.normalized);
+            }
+        }
+        return out;
+    }
+
+    // ---- meshes ----------------------------------------------------------------------------
+
+    // The glint meshes (one per drawable primitive) of glTF mesh `index`, with their materials:
+    // made on first use, placed again by every further node (instances).
+    const std::vector<std::pair<std::uint32_t, std::uint32_t>>& mesh(int index,
+                                                                      const std::string& use) {
+        if (index < 0 || static_cast<std::size_t>(index) >= m_.meshes.size())
+            fail(use, "no mesh " + std::to_string(index));
+        if (const auto it = meshes_.find(index); it != meshes_.end()) return it->second;
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> parts;
+        const tinygltf::Mesh& mesh = m_.meshes[static_cast<std::size_t>(index)];
+        for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+            const std::string at =
+                pointer("meshes", static_cast<std::size_t>(index)) + "/primitives/" +
+                std::to_string(p);
+            std::optional<TriangleMesh> triangles = primitive(mesh.primitives[p], at);
+            if (!triangles) continue;
+            const std::uint32_t material = primitive_material(mesh.primitives[p], at);
+            parts.emplace_back(static_cast<std::uint32_t>(scene_.meshes.size()), material);
+            scene_.meshes.push_back(std::move(*triangles));
+        }
+        return meshes_.emplace(index, std::move(parts)).first->second;
+    }
+
+    std::uint32_t primitive_material(const tinygltf::Primitive& p, const std::string& at) {
+        if (p.material < 0) return 0;
+        if (static_cast<std::size_t>(p.material) >= m_.materials.size())
+            fail(at + "/material", "no material " + std::to_string(p.material));
+        return material(p.material);
+    }
+
+    // A primitive's triangles, or nothing for points and lines (not drawn, with a warning).
+    std::optional<TriangleMesh> primitive(const tinygltf::Primitive& p, const std::string& at) {
+        const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
+        if (mode <= TINYGLTF_MODE_LINE_STRIP) {
+            unused("points and lines (mode " + std::to_string(mode) + ")", at);
+            return std::nullopt;
+        }
+        if (mode > TINYGLTF_MODE_TRIANGLE_FAN) fail(at + "/mode", "unknown primitive mode");
+        const auto attribute = [&](const char* key) {
+            const auto it = p.attributes.find(key);
+            return it == p.attributes.end() ? -1 : it->second;
+        };
+        if (attribute("POSITION") < 0) fail(at + "/attributes", "a primitive needs a POSITION");
+        const std::string positions_at = at + "/attributes/POSITION";
+        const std::vector<double> xyz =
+            read_accessor(attribute("POSITION"), TINYGLTF_TYPE_VEC3, 3,
+                          {TINYGLTF_COMPONENT_TYPE_FLOAT}, positions_at, kMaxMeshVertices);
+        const std::size_t n = xyz.size() / 3;
+        TriangleMesh mesh;
+        mesh.vertices.reserve(n);
+        for (std::size_t i = 0; i < n; ++i)
+            mesh.vertices.emplace_back(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+        mesh_places_.push_back(
+            {pointer("accessors", static_cast<std::size_t>(attribute("POSITION"))), -1});
+        if (attribute("NORMAL") >= 0) {
+            const std::vector<double> normals =
+                read_accessor(attribute("NORMAL"), TINYGLTF_TYPE_VEC3, 3,
+                              {TINYGLTF_COMPONENT_TYPE_FLOAT}, at + "/attributes/NORMAL", n);
+            if (normals.size() != xyz.size())
+                fail(at + "/attributes/NORMAL", "has a count other than POSITION's");
+            for (std::size_t i = 0; i < n; ++i) {
+                const glm::dvec3 v(normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]);
+                const double length = glm::length(v);
+                // Where a normal is zero or not finite, the facet's stands in (as for OBJ).
+                mesh.normals.emplace_back(length > 0 && std::isfinite(length) ? v / length
+                                                                               : glm::dvec3(0));
+            }
+        }
+        if (attribute("TEXCOORD_0") >= 0) {
+            const std::vector<double> uv = read_accessor(
+                attribute("TEXCOORD_0"), TINYGLTF_TYPE_VEC2, 2,
+                {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                 TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                at + "/attributes/TEXCOORD_0", n);
+            if (uv.size() != 2 * n)
+                fail(at + "/attributes/TEXCOORD_0", "has a count other than POSITION's");
+            for (std::size_t i = 0; i < n; ++i) mesh.uvs.emplace_back(uv[2 * i], uv[2 * i + 1]);
+        }
+        std::vector<std::uint32_t> corners;
+        if (p.indices >= 0) {
+            const std::string indices_at = pointer("accessors", static_cast<std::size_t>(p.indices));
+            const std::vector<double> indices = read_accessor(
+                p.indices, TINYGLTF_TYPE_SCALAR, 1,
+                {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                 TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
+                at + "/indices", 3 * kMaxMeshTriangles);
+            for (std::size_t k = 0; k < indices.size(); ++k) {
+                if (indices[k] >= static_cast<double>(n))
+                    fail(indices_at, "index " + std::to_string(k) + " is " +
+                                         std::to_string(static_cast<std::uint64_t>(indices[k])) +
+                                         ", beyond the " + std::to_string(n) + " vertices");
+                corners.push_back(static_cast<std::uint32_t>(indices[k]));
+            }
+            mesh_places_.back().indices = p.indices;
+        } else {
+            for (std::size_t i = 0; i < n; ++i) corners.push_back(static_cast<std::uint32_t>(i));
+        }
+        // Strips and fans become the triangles they stand for, each counter-clockwise.
+        const std::size_t c = corners.size();
+        if (mode == TINYGLTF_MODE_TRIANGLES) {
+            if (c % 3 != 0)
+                fail(p.indices >= 0 ? at + "/indices" : positions_at,
+                     std::to_string(c) + " corners do not make whole triangles");
+            for (std::size_t k = 0; k < c; k += 3)
+                mesh.triangles.push_back({corners[k], corners[k + 1], corners[k + 2]});
+        } else {
+            for (std::size_t k = 2; k < c; ++k) {
+                if (mode == TINYGLTF_MODE_TRIANGLE_FAN)
+                    mesh.triangles.push_back({corners[0], corners[k - 1], corners[k]});
+                else if (k % 2 == 0)
+                    mesh.triangles.push_back({corners[k - 2], corners[k - 1], corners[k]});
+                else
+                    mesh.triangles.push_back({corners[k - 1], corners[k - 2], corners[k]});
+            }
+        }
+        if (mesh.triangles.empty()) fail(at, "makes no triangle");
+        if (!p.targets.empty()) unused("morph targets", at);
+        return mesh;
+    }
+
+    // ---- materials -------------------------------------------------------------------------
+
+    // glTF material `index` in glint's Phong (docs/SCENES.md, "glTF materials"), made once.
+    std::uint32_t material(int index) {
+        if (const auto it = materials_.find(index); it != materials_.end()) return it->second;
+        const tinygltf::Material& g = m_.materials[static_cast<std::size_t>(index)];
+        const std::string at = pointer("materials", static_cast<std::size_t>(index));
+        const tinygltf::PbrMetallicRoughness& pbr = g.pbrMetallicRoughness;
+        const std::string pbr_at = at + "/pbrMetallicRoughness";
+        if (pbr.baseColorFactor.size() != 4)
+            fail(pbr_at + "/baseColorFactor", "must have 4 numbers");
+        const auto unit = [&](double v, const std::string& where) {
+            if (!(v >= 0 && v <= 1)) fail(where, "must be between 0 and 1");
+            return v;
+        };
+        glm::dvec3 base;
+        for (int c = 0; c < 3; ++c)
+            base[c] = unit(pbr.baseColorFactor[static_cast<std::size_t>(c)],
+                           pbr_at + "/baseColorFactor/" + std::to_string(c));
+        const double metallic = unit(pbr.metallicFactor, pbr_at + "/metallicFactor");
+        const double roughness = unit(pbr.roughnessFactor, pbr_at + "/roughnessFactor");
+        double transmission = 0, ior = 1.5;
+        if (const auto it = g.extensions.find("KHR_materials_transmission");
+            it != g.extensions.end() && it->second.Has("transmissionFactor"))
+            transmission = unit(it->second.Get("transmissionFactor").GetNumberAsDouble(),
+                                at + "/extensions/KHR_materials_transmission/transmissionFactor");
+        if (const auto it = g.extensions.find("KHR_materials_ior");
+            it != g.extensions.end() && it->second.Has("ior"))
+            ior = it->second.Get("ior").GetNumberAsDouble();
+        Material out;
+        out.diffuse = glm::vec3(base * (1 - metallic) * (1 - transmission));
+        out.ambient = out.diffuse;
+        out.specular = glm::vec3(glm::mix(glm::dvec3(0.04), base, metallic));
+        const double alpha = roughness * roughness;
+        out.shininess = static_cast<float>(
+            alpha > 0 ? std::clamp(2 / (alpha * alpha) - 2, 1.0, 1e6) : 1e6);
+        out.reflectivity = static_cast<float>(metallic * (1 - roughness) * (1 - roughness));
+        out.transmission = static_cast<float>(transmission);
+        out.ior = static_cast<float>(ior);
+        if (pbr.baseColorTexture.index >= 0) out.texture = texture(pbr.baseColorTexture, pbr_at);
+        if (pbr.metallicRoughnessTexture.index >= 0) unused("metallicRoughnessTexture", at);
+        if (g.normalTexture.index >= 0) unused("normalTexture", at);
+        if (g.occlusionTexture.index >= 0) unused("occlusionTexture", at);
+        if (g.emissiveTexture.index >= 0) unused("emissiveTexture", at);
+        if (g.emissiveFactor.size() == 3 &&
+            (g.emissiveFactor[0] > 0 || g.emissiveFactor[1] > 0 || g.emissiveFactor[2] > 0))
+            unused("emissiveFactor", at);
+        if (g.alphaMode != "OPAQUE") unused("alphaMode " + printable(g.alphaMode), at);
+        for (const auto& [extension, value] : g.extensions)
+            if (!kKnownExtensions.contains(extension))
+                unused("extension " + printable(extension), at);
+        const auto k = static_cast<std::uint32_t>(scene_.materials.size());
+        scene_.materials.push_back(out);
+        scene_.material_names.push_back(g.name.empty() ? "material " + std::to_string(index)
+                                                       : g.name);
+        material_places_.push_back(at);
+        return materials_.emplace(index, k).first->second;
+    }
+
+    // The base colour texture `info` names, or kNoTexture (with a warning) where it cannot be
+    // used; its image decoded once however many textures sample it.
+    std::uint32_t texture(const tinygltf::TextureInfo& info, const std::string& pbr_at) {
+        const std::string at = pbr_at + "/baseColorTexture";
+        if (static_cast<std::size_t>(info.index) >= m_.textures.size())
+            fail(at + "/index", "no texture " + std::to_string(info.index));
+        if (info.texCoord != 0) {
+            unused("texCoord " + std::to_string(info.texCoord) + " (glint reads TEXCOORD_0)", at);
+            return kNoTexture;
+        }
+        const tinygltf::Texture& t = m_.textures[static_cast<std::size_t>(info.index)];
+        const std::string texture_at = pointer("textures", static_cast<std::size_t>(info.index));
+        if (t.source < 0) {
+            unused("textures without an image source", texture_at);
+            return kNoTexture;
+        }
+        if (static_cast<std::size_t>(t.source) >= m_.images.size())
+            fail(texture_at + "/source", "no image " + std::to_string(t.source));
+        Texture out;
+        if (t.sampler >= 0) {
+            if (static_cast<std::size_t>(t.sampler) >= m_.samplers.size())
+                fail(texture_at + "/sampler", "no sampler " + std::to_string(t.sampler));
+            const tinygltf::Sampler& s = m_.samplers[static_cast<std::size_t>(t.sampler)];
+            const std::string sampler_at = pointer("samplers", static_cast<std::size_t>(t.sampler));
+            out.wrap_s = wrap(s.wrapS, sampler_at + "/wrapS");
+            out.wrap_t = wrap(s.wrapT, sampler_at + "/wrapT");
+        }
+        out.image = image(t.source);
+        if (!out.image) return kNoTexture;
+        scene_.textures.push_back(out);
+        return static_cast<std::uint32_t>(scene_.textures.size() - 1);
+    }
+
+    Wrap wrap(int mode, const std::string& at) const {
+        switch (mode) {
+        case TINYGLTF_TEXTURE_WRAP_REPEAT: return Wrap::repeat;
+        case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return Wrap::clamp;
+        case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return Wrap::mirror;
+        default: fail(at, "unknown wrap mode " + std::to_string(mode));
+        }
+    }
+
+    std::shared_ptr<const TextureImage> image(int index) {
+        if (const auto it = images_.find(index); it != images_.end()) return it->second;
+        const tinygltf::Image& g = m_.images[static_cast<std::size_t>(index)];
+        const std::string at = pointer("images", static_cast<std::size_t>(index));
+        const std::string label = g.uri.empty() || is_data_uri(g.uri)
+                                      ? (g.name.empty() ? "image " + std::to_string(index) : g.name)
+                                      : decode_uri(g.uri);
+        std::string why;
+        std::optional<TextureImage> decoded;
+        if (!g.image.empty()) {
+            decoded = decode_texture(std::string(g.image.begin(), g.image.end()), label, why);
+        } else if (!g.uri.empty() && !is_data_uri(g.uri)) {
+            if (const std::optional<std::string> bytes = files_(decode_uri(g.uri), why))
+                decoded = decode_texture(*bytes, label, why);
+            else
+                why = "cannot read '" + printable(label) + "': " + why;
+        } else {
+            why = "it holds no image";
+        }
+        std::shared_ptr<const TextureImage> out;
+        if (decoded)
+            out = std::make_shared<const TextureImage>(std::move(*decoded));
+        else
+            scene_.warnings.push_back(name_ + ": " + at + ": texture not used: " + printable(why));
+        return images_.emplace(index, out).first->second;
+    }
+
+    // ---- nodes -----------------------------------------------------------------------------
+
+    static DMat4 local_matrix(const tinygltf::Node& n, const std::string& at,
+                              const std::function<void(const std::string&, const std::string&)>& fail) {
+        if (!n.matrix.empty()) {
+            if (n.matrix.size() != 16) fail(at + "/matrix", "must have 16 numbers");
+            DMat4 m;
+            for (int c = 0; c < 4; ++c) // column-major, as glm
+                for (int r = 0; r < 4; ++r) m[c][r] = n.matrix[static_cast<std::size_t>(4 * c + r)];
+            return m;
+        }
+        DMat4 t(1.0), r(1.0), s(1.0);
+        if (!n.translation.empty()) {
+            if (n.translation.size() != 3) fail(at + "/translation", "must have 3 numbers");
+            t = translation_matrix({n.translation[0], n.translation[1], n.translation[2]});
+        }
+        if (!n.rotation.empty()) {
+            if (n.rotation.size() != 4) fail(at + "/rotation", "must have 4 numbers (x, y, z, w)");
+            glm::dvec4 q(n.rotation[0], n.rotation[1], n.rotation[2], n.rotation[3]);
+            const double length = glm::length(q);
+            if (!(length > 0) || !std::isfinite(length))
+                fail(at + "/rotation", "must be a unit quaternion");
+            q /= length;
+            const double x = q.x, y = q.y, z = q.z, w = q.w;
+            r[0] = {1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w), 0};
+            r[1] = {2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w), 0};
+            r[2] = {2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y), 0};
+        }
+        if (!n.scale.empty()) {
+            if (n.scale.size() != 3) fail(at + "/scale", "must have 3 numbers");
+            s = scale_matrix({n.scale[0], n.scale[1], n.scale[2]});
+        }
+        return t * r * s;
+    }
+
+    struct Placed {
+        std::size_t node;
+        DMat4 world;
+    };
+
+    // The default scene's node trees, walked without recursion: each node's world matrix is its
+    // parent's times its own. A node met twice is a cycle or a second parent: an error either way.
+    void walk_nodes() {
+        std::vector<int> roots;
+        std::string roots_at;
+        int chosen = m_.defaultScene;
+        if (chosen >= 0 && static_cast<std::size_t>(chosen) >= m_.scenes.size())
+            fail("/scene", "no scene " + std::to_string(chosen));
+        if (chosen < 0 && !m_.scenes.empty()) chosen = 0;
+        if (chosen >= 0) {
+            roots = m_.scenes[static_cast<std::size_t>(chosen)].nodes;
+            roots_at = pointer("scenes", static_cast<std::size_t>(chosen)) + "/nodes";
+        } else { // no scene: every node that is no node's child
+            std::vector<bool> child(m_.nodes.size(), false);
+            for (const tinygltf::Node& n : m_.nodes)
+                for (const int c : n.children)
+                    if (c >= 0 && static_cast<std::size_t>(c) < child.size())
+                        child[static_cast<std::size_t>(c)] = true;
+            for (std::size_t i = 0; i < child.size(); ++i)
+                if (!child[i]) roots.push_back(static_cast<int>(i));
+            roots_at = "/nodes";
+            scene_.notes.push_back(name_ + ": no scene given: every root node is drawn");
+        }
+        enum : std::uint8_t { unseen, open, done };
+        std::vector<std::uint8_t> state(m_.nodes.size(), unseen);
+        struct Frame {
+            std::size_t node;
+            DMat4 world;
+            std::size_t next_child = 0;
+        };
+        const auto failing = [this](const std::string& at, const std::string& what) { fail(at, what); };
+        const auto enter = [&](int node, const std::string& at, const DMat4& parent,
+                               std::vector<Frame>& stack, const std::string& parent_node) {
+            if (node < 0 || static_cast<std::size_t>(node) >= m_.nodes.size())
+                fail(at, "no node " + std::to_string(node));
+            const auto k = static_cast<std::size_t>(node);
+            if (state[k] == open)
+                fail(at, "node " + std::to_string(node) + " is an ancestor of " + parent_node +
+                             ": the node graph has a cycle");
+            if (state[k] == done)
+                fail(at, "node " + std::to_string(node) + " is placed a second time (a node has "
+                                                          "at most one parent)");
+            state[k] = open;
+            const DMat4 world = parent * local_matrix(m_.nodes[k], pointer("nodes", k), failing);
+            place(k, world);
+            stack.push_back({k, world});
+        };
+        for (std::size_t r = 0; r < roots.size(); ++r) {
+            std::vector<Frame> stack;
+            enter(roots[r], roots_at + "/" + std::to_string(r), DMat4(1.0), stack, "the scene");
+            while (!stack.empty()) {
+                Frame& top = stack.back();
+                const tinygltf::Node& n = m_.nodes[top.node];
+                if (top.next_child == n.children.size()) {
+                    state[top.node] = done;
+                    stack.pop_back();
+                    continue;
+                }
+                const std::size_t j = top.next_child++;
+                const DMat4 world = top.world; // `top` moves when the stack grows
+                const std::string parent = "node " + std::to_string(top.node);
+                enter(n.children[j], pointer("nodes", top.node) + "/children/" + std::to_string(j),
+                      world, stack, parent);
+            }
+        }
+    }
+
+    // What node k places: its mesh's primitives as objects, its camera, its light.
+    void place(std::size_t k, const DMat4& world) {
+        const tinygltf::Node& n = m_.nodes[k];
+        const std::string at = pointer("nodes", k);
+        if (n.mesh >= 0) {
+            const auto& parts = mesh(n.mesh, at + "/mesh");
+            if (scene_.objects.size() + parts.size() > kMaxModelObjects)
+                fail(at, "the model places more than " + std::to_string(kMaxModelObjects) +
+                             " objects");
+            const std::string& mesh_name = m_.meshes[static_cast<std::size_t>(n.mesh)].name;
+            for (const auto& [glint_mesh, material] : parts) {
+                SceneObject o;
+                o.shape = ShapeKind::mesh;
+                o.mesh = glint_mesh;
+                o.material = material;
+                o.transform = world;
+                scene_.objects.push_back(o);
+                scene_.object_names.push_back(printable(n.name.empty() ? mesh_name : n.name));
+                object_places_.push_back(at);
+            }
+        }
+        if (n.skin >= 0) unused("skins (meshes drawn as their nodes place them)", at);
+        if (n.camera >= 0) {
+            if (static_cast<std::size_t>(n.camera) >= m_.cameras.size())
+                fail(at + "/camera", "no camera " + std::to_string(n.camera));
+            cameras_.emplace(n.camera, Placed{k, world}); // the first node placing it
+        }
+        if (const auto it = n.extensions.find("KHR_lights_punctual"); it != n.extensions.end()) {
+            const tinygltf::Value& light = it->second.Get("light");
+            if (!light.IsInt() || light.GetNumberAsInt() < 0 ||
+                static_cast<std::size_t>(light.GetNumberAsInt()) >= m_.lights.size())
+                fail(at + "/extensions/KHR_lights_punctual/light", "no such light");
+            lights_.push_back({static_cast<std::size_t>(light.GetNumberAsInt()), world, k});
+        }
+    }
+
+    // ---- camera and lights -----------------------------------------------------------------
+
+    void camera() {
+        std::optional<int> chosen = options_.camera;
+        if (chosen) {
+            const int n = static_cast<int>(m_.cameras.size());
+            if (*chosen < 0 || *chosen >= n)
+                throw SceneError(name_ + ": --camera " + std::to_string(*chosen) + ": the file has " +
+                                 (n == 0 ? "no cameras" : std::to_string(n) + " camera(s), 0 to " +
+                                                              std::to_string(n - 1)));
+            const std::string at = pointer("cameras", static_cast<std::size_t>(*chosen));
+            if (!cameras_.contains(*chosen))
+                fail(at, "--camera " + std::to_string(*chosen) +
+                             ": no node of the scene places this camera");
+            if (m_.cameras[static_cast<std::size_t>(*chosen)].type != "perspective")
+                fail(at + "/type", "--camera " + std::to_string(*chosen) +
+                                       ": glint's camera is a perspective (pinhole) one");
+        } else {
+            for (const auto& [index, placed] : cameras_) { // the first, in /cameras order
+                if (m_.cameras[static_cast<std::size_t>(index)].type == "perspective") {
+                    chosen = index;
+                    break;
+                }
+                unused("orthographic cameras", pointer("cameras", static_cast<std::size_t>(index)));
+            }
+        }
+        if (!chosen) {
+            frame_model(scene_);
+            camera_place_ = "the framing camera";
+            return;
+        }
+        const Placed& placed = cameras_.at(*chosen);
+        const tinygltf::Camera& c = m_.cameras[static_cast<std::size_t>(*chosen)];
+        camera_place_ = pointer("cameras", static_cast<std::size_t>(*chosen));
+        // DESIGN §12: the node's −Z is the viewing direction, its +Y up.
+        scene_.camera.eye = DVec3(placed.world * glm::dvec4(0, 0, 0, 1));
+        scene_.camera.look_at = scene_.camera.eye + DVec3(placed.world * glm::dvec4(0, 0, -1, 0));
+        scene_.camera.up = DVec3(placed.world * glm::dvec4(0, 1, 0, 0));
+        scene_.camera.fov_y = c.perspective.yfov * (180.0 / std::numbers::pi);
+        camera_place_node_ = pointer("nodes", placed.node);
+    }
+
+    void lights() {
+        for (const PlacedLight& p : lights_) {
+            const tinygltf::Light& l = m_.lights[p.light];
+            const std::string at = "/extensions/KHR_lights_punctual/lights/" + std::to_string(p.light);
+            glm::dvec3 colour(1.0);
+            if (!l.color.empty()) {
+                if (l.color.size() != 3) fail(at + "/color", "must have 3 numbers");
+                colour = {l.color[0], l.color[1], l.color[2]};
+            }
+            if (!(l.intensity >= 0)) fail(at + "/intensity", "must not be negative");
+            PointLight light{DVec3(p.world * glm::dvec4(0, 0, 0, 1)), glm::vec3(colour * l.intensity)};
+            if (l.type == "spot") {
+                unused("spot cones (spot lights shine as point lights)", at);
+            } else if (l.type == "directional") {
+                // A point light far along the direction it comes from: 100 radii from the model.
+                unused("directional lights (placed as point lights 100 model radii away)", at);
+                DVec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+                for (const SceneObject& o : scene_.objects)
+                    if (const std::optional<ObjectBox> box = unit_box(o, scene_.meshes)) {
+                        const auto [a, b] = transformed_box(*box, o.transform);
+                        lo = glm::min(lo, a), hi = glm::max(hi, b);
+                    }
+                const DVec3 centre = lo.x <= hi.x ? 0.5 * (lo + hi) : DVec3(0.0);
+                const double radius = lo.x <= hi.x ? std::max(0.5 * glm::length(hi - lo), 1e-3) : 1;
+                DVec3 d = DVec3(p.world * glm::dvec4(0, 0, -1, 0));
+                if (!(glm::length(d) > 0)) fail(pointer("nodes", p.node), "a directional light's node must not scale it to nothing");
+                light.position = centre - 100 * radius * glm::normalize(d);
+            } else if (l.type != "point") {
+                fail(at + "/type", "unknown light type '" + printable(l.type) + "'");
+            }
+            scene_.lights.push_back(light);
+            light_places_.push_back(at);
+        }
+        if (lights_.empty()) {
+            light_model(scene_);
+            light_places_.assign(scene_.lights.size(), "the default lights");
+        }
+    }
+
+    // ---- places ----------------------------------------------------------------------------
+
+    std::string place_of(const std::string& path) const {
+        std::vector<std::string> parts;
+        for (std::size_t at = 0; at <= path.size();) {
+            const std::size_t slash = std::min(path.find('/', at), path.size());
+            parts.push_back(path.substr(at, slash - at));
+            at = slash + 1;
+        }
+        const auto index = [&](std::size_t k) { return std::stoul(parts.at(k)); };
+        const std::string& head = parts[0];
+        std::string place;
+        if (head == "materials" && parts.size() > 1) {
+            place = material_places_.at(index(1));
+            if (parts.size() > 2 && parts[2] == "ior")
+                place += "/extensions/KHR_materials_ior/ior";
+        } else if (head == "objects" && parts.size() > 1) {
+            place = object_places_.at(index(1)) + (parts.size() > 2 ? " (its world matrix)" : "");
+        } else if (head == "meshes" && parts.size() > 2) {
+            const MeshPlace& m = mesh_places_.at(index(1));
+            if (parts[2] == "indices" && m.indices >= 0)
+                place = pointer("accessors", static_cast<std::size_t>(m.indices));
+            else
+                place = m.positions;
+            if (parts.size() > 3) place += ", element " + parts[3];
+        } else if (head == "camera") {
+            place = camera_place_ + (camera_place_node_.empty() ? "" : " on " + camera_place_node_);
+        } else if (head == "lights" && parts.size() > 1) {
+            place = light_places_.at(index(1));
+        } else {
+            place = "/" + path;
+        }
+        return name_ + ": " + place;
+    }
+
+    struct MeshPlace {
+        std::string positions; // the POSITION accessor
+        int indices;           // the indices accessor, or −1
+    };
+    struct PlacedLight {
+        std::size_t light;
+        DMat4 world;
+        std::size_t node;
+    };
+
+    const tinygltf::Model& m_;
+    const std::string& name_;
+    const ModelFiles& files_;
+    const ModelOptions& options_;
+    Scene scene_;
+    std::map<int, std::vector<std::pair<std::uint32_t, std::uint32_t>>> meshes_;
+    std::map<int, std::uint32_t> materials_;
+    std::map<int, std::shared_ptr<const TextureImage>> images_;
+    std::map<int, Placed> cameras_; // by camera index: ordered, so the first is /cameras' first
+    std::vector<PlacedLight> lights_;
+    std::map<std::string, std::string> unused_;
+    std::vector<std::string> material_places_, object_places_, light_places_;
+    std::vector<MeshPlace> mesh_places_;
+    std::string camera_place_, camera_place_node_;
+};
+
+} // namespace
+
+Scene parse_gltf(const std::string& bytes, const std::string& name, const ModelFiles& files,
+                 const ModelOptions& options) {
+    bool glb = false;
+    std::vector<std::string> warnings;
+    std::map<std::string, std::vector<unsigned char>> external =
+        Precheck(bytes, name, files).run(glb, warnings);
+    tinygltf::Model model;
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(keep_image_bytes, nullptr);
+    loader.SetFsCallbacks({any_file_exists, same_path, read_prechecked, write_nothing, &external});
+    std::string err, warn;
+    bool ok = false;
+    try {
+        const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+        ok = glb ? loader.LoadBinaryFromMemory(&model, &err, &warn, data,
+                                               static_cast<unsigned>(bytes.size()), "")
+                 : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(),
+                                              static_cast<unsigned>(bytes.size()), "");
+    } catch (const std::exception& e) {
+        err = e.what();
+        ok = false;
+    }
+    if (!ok) {
+        std::string first = err.substr(0, err.find('\n'));
+        throw SceneError(name + ": not a glTF 2.0 file glint can read: " +
+                         printable(first.empty() ? "tinygltf gave no reason" : first, 200));
+    }
+    return Reader(model, name, files, options, std::move(warnings)).read();
+}
+
+Scene load_gltf(const std::filesystem::path& path, const ModelOptions& options) {
+    const std::string bytes = read_scene_file(path, "glTF file");
+    const std::filesystem::path dir = path.parent_path();
+    const ModelFiles files = [&](const std::string& uri, std::string& why) {
+        try {
+            return std::optional<std::string>(read_scene_file(dir / uri, "file"));
+        } catch (const SceneError& e) {
+            why = e.what();
+            return std::optional<std::string>();
+        }
+    };
+    return parse_gltf(bytes, path.string(), files, options);
+}
+
+} // namespace glint

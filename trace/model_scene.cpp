@@ -1,0 +1,101 @@
+#include "trace/model_scene.h"
+
+#include "trace/obj_loader.h"
+#include "trace/scene_check.h"
+#include "trace/shapes/table.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <tuple>
+
+namespace glint {
+
+void frame_model(Scene& scene) {
+    // The world box's centre, and the farthest placed mesh vertex from it (or, for other shapes,
+    // the farthest corner of their placed box): the bounding sphere about the box's centre.
+    DVec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+    const auto each_point = [&](const auto& visit) {
+        for (const SceneObject& o : scene.objects) {
+            if (o.shape == ShapeKind::mesh || o.shape == ShapeKind::triangle) {
+                for (const glm::vec3& v : scene.meshes[o.mesh].vertices)
+                    visit(DVec3(o.transform * glm::dvec4(DVec3(v), 1.0)));
+            } else if (const std::optional<ObjectBox> box = unit_box(o, scene.meshes)) {
+                const auto [a, b] = transformed_box(*box, o.transform);
+                for (int k = 0; k < 8; ++k)
+                    visit(DVec3(k & 1 ? b.x : a.x, k & 2 ? b.y : a.y, k & 4 ? b.z : a.z));
+            }
+        }
+    };
+    each_point([&](DVec3 p) { lo = glm::min(lo, p), hi = glm::max(hi, p); });
+    if (!(lo.x <= hi.x)) return;
+    const DVec3 centre = 0.5 * (lo + hi);
+    double radius = 0;
+    each_point([&](DVec3 p) { radius = std::max(radius, glm::length(p - centre)); });
+    // A model that is one point still gets a distance.
+    if (!(radius > 0)) radius = std::max(1.0, glm::length(centre)) * 1e-3;
+    Camera& c = scene.camera;
+    const double half_y = glm::radians(c.fov_y) / 2;
+    const double half_x = std::atan(std::tan(half_y) * c.width / c.height);
+    // The sphere subtends asin(r/d) from distance d: fitted to kFramingFill of the half angle.
+    const double half = std::min(half_x, half_y) * kFramingFill;
+    const double distance = radius / std::sin(half);
+    c.look_at = centre;
+    c.eye = centre + distance * glm::normalize(kFramingDirection);
+    c.up = {0.0, 1.0, 0.0};
+}
+
+void light_model(Scene& scene) {
+    const Camera& c = scene.camera;
+    const DVec3 back = c.eye - c.look_at; // from the model towards the eye
+    const DVec3 right = glm::normalize(glm::cross(c.up, back));
+    const DVec3 up = glm::normalize(glm::cross(back, right));
+    const double d = glm::length(back);
+    // The key light from the upper left, twice as far as the eye; the fill light at the eye.
+    scene.lights.push_back({c.look_at + back + d * (0.8 * up - 0.6 * right), glm::vec3(0.7f)});
+    scene.lights.push_back({c.eye, glm::vec3(0.2f)});
+    scene.ambient = glm::vec3(0.1f);
+}
+
+Scene obj_scene(const std::filesystem::path& path, const ModelOptions& options) {
+    ObjModel model = load_obj(path);
+    Scene scene;
+    if (options.size) std::tie(scene.camera.width, scene.camera.height) = *options.size;
+    scene.materials.emplace_back();
+    scene.material_names.emplace_back("default");
+    const std::string stem = path.stem().string();
+    for (ObjPart& part : model.parts) {
+        SceneObject o;
+        o.shape = ShapeKind::mesh;
+        if (part.material) {
+            if (part.texture) {
+                part.material->texture = static_cast<std::uint32_t>(scene.textures.size());
+                scene.textures.push_back(*part.texture);
+            }
+            o.material = static_cast<std::uint32_t>(scene.materials.size());
+            scene.materials.push_back(*part.material);
+            scene.material_names.push_back(part.material_name);
+        }
+        o.mesh = static_cast<std::uint32_t>(scene.meshes.size());
+        scene.meshes.push_back(std::move(part.mesh));
+        scene.objects.push_back(o);
+        scene.object_names.push_back(part.material_name.empty() ? stem
+                                                                : stem + ":" + part.material_name);
+    }
+    scene.notes = std::move(model.notes);
+    scene.warnings = std::move(model.warnings);
+    frame_model(scene);
+    light_model(scene);
+    const std::string name = path.string();
+    check_scene(scene, [&](const std::string& part) {
+        const std::size_t slash = part.find('/');
+        const std::string head = part.substr(0, slash);
+        if (head == "materials" || head == "meshes" || head == "objects")
+            return name + ": " + head.substr(0, head.size() - 1) + " " +
+                   part.substr(slash + 1, part.find('/', slash + 1) - slash - 1);
+        return name + ": " + head + " (of the framing camera and default lights)";
+    });
+    return scene;
+}
+
+} // namespace glint
