@@ -1,0 +1,48 @@
+// Writes the glTF fuzzer's seeds (fuzz/gltf_fuzzer.cpp) into the directory given: small models
+// made by tests/gltf_builder.h, as .gltf text and as .glb, covering what the loader reads (TRS
+// and matrix nodes, instanced meshes, a camera, a light, a texture with a sampler, a strip).
+#include "gltf_builder.h"
+
+#include "trace/image.h"
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+int main(int argc, char** argv) {
+    using glint::testing::GltfBuilder;
+    if (argc != 2) {
+        std::cerr << "usage: gltf_seeds DIRECTORY\n";
+        return 2;
+    }
+    const std::filesystem::path dir = argv[1];
+    std::filesystem::create_directories(dir);
+    GltfBuilder b;
+    glint::Image image(2, 2);
+    for (std::size_t i = 0; i < image.rgb.size(); ++i) image.rgb[i] = static_cast<std::uint8_t>(40 * i);
+    const int texture = b.texture(glint::encode_png(image), {{"wrapS", 33071}, {"wrapT", 33648}});
+    b.doc["materials"].push_back(
+        {{"pbrMetallicRoughness",
+          {{"baseColorTexture", {{"index", texture}}}, {"metallicFactor", 0.5}, {"roughnessFactor", 0.25}}},
+         {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 0.5}}},
+                         {"KHR_materials_ior", {{"ior", 1.4}}}}}});
+    const int quad = b.mesh({-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0}, {0, 1, 2, 0, 2, 3}, 0,
+                            {0, 1, 1, 1, 1, 0, 0, 0});
+    const int child = b.node({{"mesh", quad}, {"matrix", {0, 1, 0, 0, -1, 0, 0, 0, 0, 0, 1, 0, 2, 0, 0, 1}}},
+                             false);
+    b.node({{"mesh", quad}, {"translation", {0, 0, -1}}, {"rotation", {0, 0.6, 0, 0.8}},
+            {"scale", {1, 2, 1}}, {"children", {child}}});
+    b.doc["cameras"].push_back({{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.1}}}});
+    b.node({{"camera", 0}, {"translation", {0, 0, 6}}});
+    b.doc["extensionsUsed"] = {"KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior"};
+    b.doc["extensions"] = {{"KHR_lights_punctual",
+                            {{"lights", {{{"type", "point"}, {"color", {1, 0.9, 0.8}}, {"intensity", 0.8}}}}}}};
+    b.node({{"translation", {2, 3, 4}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    std::ofstream(dir / "scene.gltf", std::ios::binary) << b.gltf();
+    std::ofstream(dir / "scene.glb", std::ios::binary) << b.glb();
+    GltfBuilder strip;
+    strip.node({{"mesh", strip.mesh({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0}, {0, 1, 2, 3})}});
+    strip.doc["meshes"][0]["primitives"][0]["mode"] = 5;
+    std::ofstream(dir / "strip.gltf", std::ios::binary) << strip.gltf();
+    return 0;
+}
