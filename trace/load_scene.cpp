@@ -1,0 +1,30 @@
+// load_scene (trace/scene_loader.h): a scene or a model file, read by its extension. Apart from
+// the loaders, so that none of them depends on another through it.
+#include "trace/gltf_loader.h"
+#include "trace/model_scene.h"
+#include "trace/scene_loader.h"
+
+#include <cctype>
+#include <tuple>
+
+namespace glint {
+
+Scene load_scene(const std::filesystem::path& path, const ModelOptions& options) {
+    const std::string name = path.string();
+    std::string extension = path.extension().string();
+    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (extension == ".gltf" || extension == ".glb") return load_gltf(path, options);
+    if (options.camera)
+        throw SceneError(name + ": --camera picks a glTF file's camera; this file has none");
+    if (extension == ".obj") return obj_scene(path, options);
+    // A name without an extension is read as a JSON scene, as it always was.
+    if (!extension.empty() && extension != ".json" && extension != ".nff")
+        throw SceneError(name + ": unknown scene format '" + printable(extension) +
+                         "': glint reads .json, .nff, .obj, .gltf and .glb");
+    const std::string text = read_scene_file(path, "scene file");
+    Scene scene = extension == ".nff" ? parse_nff(text, name) : parse_scene(text, name);
+    if (options.size) std::tie(scene.camera.width, scene.camera.height) = *options.size;
+    return scene;
+}
+
+} // namespace glint
