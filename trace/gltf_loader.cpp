@@ -925,12 +925,7 @@ class Reader {
     // ---- places ----------------------------------------------------------------------------
 
     std::string place_of(const std::string& path) const {
-        std::vector<std::string> parts;
-        for (std::size_t at = 0; at <= path.size();) {
-            const std::size_t slash = std::min(path.find('/', at), path.size());
-            parts.push_back(path.substr(at, slash - at));
-            at = slash + 1;
-        }
+        const std::vector<std::string> parts = path_parts(path);
         const auto index = [&](std::size_t k) { return std::stoul(parts.at(k)); };
         const std::string& head = parts[0];
         std::string place;

@@ -173,4 +173,14 @@ void check_scene(const Scene& scene, const ScenePlaces& places) {
         check.object("objects/" + std::to_string(o), scene.objects[o], scene);
 }
 
+std::vector<std::string> path_parts(const std::string& path) {
+    std::vector<std::string> parts;
+    for (std::size_t at = 0; at <= path.size();) {
+        const std::size_t slash = std::min(path.find('/', at), path.size());
+        parts.push_back(path.substr(at, slash - at));
+        at = slash + 1;
+    }
+    return parts;
+}
+
 } // namespace glint

@@ -8,6 +8,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace glint {
 
@@ -16,6 +17,9 @@ namespace glint {
 // "objects/7/transform", "meshes/1/vertices/12/0", "meshes/1/indices/5", "render/max_depth"):
 // the start of an error message, "scenes/x.json: /objects/3/transform" or "balls.nff:12".
 using ScenePlaces = std::function<std::string(const std::string& path)>;
+
+// Such a path's parts, split at each '/': "lights/2/position" is {"lights", "2", "position"}.
+std::vector<std::string> path_parts(const std::string& path);
 
 // Throws SceneError "PLACE: what is wrong" for the first part of `scene` that breaks a rule.
 void check_scene(const Scene& scene, const ScenePlaces& places);

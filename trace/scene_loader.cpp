@@ -105,12 +105,7 @@ class Loader {
     // A part of the scene model (trace/scene_check.h) as the place in this file it came from:
     // the JSON pointer of its part, then as much of the rest of its path as the file spells out.
     std::string place_of(const std::string& path) const {
-        std::vector<std::string> parts;
-        for (std::size_t at = 0; at <= path.size();) {
-            const std::size_t slash = std::min(path.find('/', at), path.size());
-            parts.push_back(path.substr(at, slash - at));
-            at = slash + 1;
-        }
+        std::vector<std::string> parts = path_parts(path);
         std::string pointer;
         std::size_t next = 0;
         const auto index = [&] { return static_cast<std::size_t>(std::stoul(parts.at(1))); };
