@@ -83,14 +83,8 @@ TEST_P(AccelTest, AgreesExactlyWithTheListOnAMillionRandomRays) {
     const AccelKind kind = GetParam();
     std::mt19937 rng(1234);
     std::uint64_t rays = 0, hits = 0;
-    // Under the sanitizers (ten times slower), every scene but a quarter of the rays: they look
-    // for memory errors, which building and walking each structure shows; the release run holds
-    // the million to the list's answers.
-#ifdef GLINT_SANITIZE
-    constexpr int kRaysPerScene = 1000;
-#else
-    constexpr int kRaysPerScene = 4000;
-#endif
+    // Under the sanitizers (test_scenes.h), every scene but a quarter of the rays.
+    constexpr int kRaysPerScene = testing::kUnderSanitizers ? 1000 : 4000;
     for (unsigned seed = 0; seed < 250; ++seed) {
         Scene scene = random_scene(seed, 10 + static_cast<int>(seed % 7) * 15);
         scene.camera.eye = {0, 0, 0};
@@ -126,12 +120,9 @@ TEST_P(AccelTest, PacketsAgreeExactlyWithTheListRayByRay) {
     std::uniform_real_distribution<float> u(-1, 1);
     std::uint64_t rays = 0;
     // The four-wide BVH traverses packets; the other structures answer them ray by ray. Under the
-    // sanitizers (ten times slower), fewer scenes: they look for memory errors, not wrong answers.
-#ifdef GLINT_SANITIZE
-    const unsigned scenes = kind == AccelKind::bvh ? 50 : 10;
-#else
-    const unsigned scenes = kind == AccelKind::bvh ? 250 : 20;
-#endif
+    // sanitizers (test_scenes.h), fewer scenes.
+    const unsigned scenes = kind == AccelKind::bvh ? (testing::kUnderSanitizers ? 50 : 250)
+                                                   : (testing::kUnderSanitizers ? 10 : 20);
     for (unsigned seed = 0; seed < scenes; ++seed) {
         Scene scene = random_scene(seed, 10 + static_cast<int>(seed % 7) * 15);
         scene.camera.eye = {0, 0, 0};

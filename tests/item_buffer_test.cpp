@@ -141,13 +141,8 @@ TEST_P(GlTest, ExactResolveReproducesRayModeOnACrowdedScene) {
 // --aa-sample-ids, adaptive hybrid also draws the N×N item buffer and refines where its samples
 // name several objects: that only adds refined pixels, so the image may differ only on those.
 TEST_P(GlTest, HybridEqualsRayModeWithSamplesUniformAndAdaptive) {
-#ifdef GLINT_SANITIZE
-    // Under the sanitizers, a quarter of the pixels: every claim here is byte for byte and holds
-    // at any size, and every scene, grid, rule and raster mode still runs under them.
-    constexpr int kWidth = 48, kHeight = 36;
-#else
-    constexpr int kWidth = 96, kHeight = 72;
-#endif
+    // Every claim here is byte for byte, so it holds at the sanitizers' smaller size too.
+    constexpr int kWidth = 96 / testing::kSanitizerShrink, kHeight = 72 / testing::kSanitizerShrink;
     for (const char* name : {"default", "glass", "transforms"}) {
         for (const int n : {2, 3}) {
             Scene scene = testing::shipped(name, kWidth, kHeight);
@@ -361,15 +356,11 @@ class HybridTest : public ::testing::TestWithParam<SceneCase> {};
 TEST_P(HybridTest, HybridImageAgreesWithRayImage) {
     const SceneCase c = GetParam();
     Scene scene = load_scene(GLINT_SOURCE_DIR "/" + c.scene);
-    scene.camera.width = 400, scene.camera.height = 300;
-#ifdef GLINT_SANITIZE
-    // Under the sanitizers (ten times slower), a quarter of the pixels: the sanitizers look for
-    // memory errors, which every scene, raster mode and resolve still exercises, and the release
-    // run holds every case at full size. Exact resolve's claim, byte for byte, holds at any size;
-    // trust's bounds below hold at 200 × 150 too (measured: at most 0.10% of pixels, rings-1 with
-    // mesh raster, and 1.24% on shells-1, against 0.07% and 1.24% at 400 × 300).
-    scene.camera.width = 200, scene.camera.height = 150;
-#endif
+    // Under the sanitizers 200 × 150 (test_scenes.h). Exact resolve's claim, byte for byte, holds
+    // at any size; trust's bounds below hold at 200 × 150 too (measured: at most 0.10% of pixels,
+    // rings-1 with mesh raster, and 1.24% on shells-1, against 0.07% and 1.24% at 400 × 300).
+    scene.camera.width = 400 / testing::kSanitizerShrink;
+    scene.camera.height = 300 / testing::kSanitizerShrink;
     // One sample a pixel: the bounds below are per pixel centre (the sample grids are held to
     // ray mode by HybridEqualsRayModeWithSamplesUniformAndAdaptive).
     scene.render.samples = 1;
@@ -420,12 +411,12 @@ std::vector<SceneCase> every_scene_case() {
     for (const std::string& scene : scenes)
         for (RasterMode raster : all_values<RasterMode>())
             for (Resolve resolve : {Resolve::exact, Resolve::trust}) {
-#ifdef GLINT_SANITIZE
                 // Under the sanitizers, trust with auto raster only: trust's resolve is one code
                 // path whatever drew the ids, and exact resolve still runs every raster mode's
                 // upload and draw on every scene. The release run holds all six combinations.
-                if (resolve == Resolve::trust && raster != RasterMode::automatic) continue;
-#endif
+                if (testing::kUnderSanitizers && resolve == Resolve::trust &&
+                    raster != RasterMode::automatic)
+                    continue;
                 cases.push_back({scene, raster, resolve});
             }
     return cases;

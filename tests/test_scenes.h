@@ -10,6 +10,18 @@
 
 namespace glint::testing {
 
+// Under the sanitizers (GLINT_SANITIZE: ASan + UBSan, about ten times slower) the slow property
+// and image tests do less of the same work: the sanitizers look for memory errors, which every
+// scene, structure and mode those tests run still shows, and the Release run does the full amount.
+#ifdef GLINT_SANITIZE
+inline constexpr bool kUnderSanitizers = true;
+#else
+inline constexpr bool kUnderSanitizers = false;
+#endif
+// What image tests divide their width and height by: a quarter of the pixels under the
+// sanitizers, for claims that hold at any size.
+inline constexpr int kSanitizerShrink = kUnderSanitizers ? 2 : 1;
+
 // The scenes in scenes/ (README's table), by name: every test over "each shipped scene" uses this.
 inline constexpr const char* kShippedScenes[] = {"default",    "mirrors",   "transforms", "shadows",
                                                  "primitives", "instances", "whitted",    "glass"};
