@@ -376,9 +376,12 @@ TEST(Accel, BvhDepthStaysWithinTheTraversalStackWhereSahPeelsOneObjectALevel) {
 // the answer does not depend on the order the tree offers its leaves in. The mesh is a grid of
 // triangles sharing edges and vertices (rays aimed at them tie on t), with a few triangles
 // repeated at far-apart indices (every hit on them ties).
-TEST(Accel, MeshHitsAreTheSameWhateverTheVisitingOrder) {
+// A bumpy n × n grid of vertices 1 apart over x and z (y from 0 to 1.2), two triangles a cell,
+// with repeats that tie: the same corners at a later index, and one at an earlier index too.
+constexpr std::uint32_t kGrid = 24;
+TriangleMesh grid_mesh() {
     TriangleMesh given;
-    constexpr std::uint32_t n = 24;
+    constexpr std::uint32_t n = kGrid;
     for (std::uint32_t j = 0; j < n; ++j)
         for (std::uint32_t i = 0; i < n; ++i)
             given.vertices.push_back({static_cast<float>(i), 0.3f * static_cast<float>((i * j) % 5),
@@ -389,10 +392,14 @@ TEST(Accel, MeshHitsAreTheSameWhateverTheVisitingOrder) {
             given.triangles.push_back({a, a + n, a + 1});
             given.triangles.push_back({a + 1, a + n, a + n + 1});
         }
-    // Repeats: the same corners at a later index, and one at an earlier index too.
     for (const std::size_t k : {3u, 200u, 777u}) given.triangles.push_back(given.triangles[k]);
     given.triangles.insert(given.triangles.begin() + 5, given.triangles[900]);
-    const Mesh mesh = prepare_mesh(given);
+    return given;
+}
+
+TEST(Accel, MeshHitsAreTheSameWhateverTheVisitingOrder) {
+    constexpr std::uint32_t n = kGrid;
+    const Mesh mesh = prepare_mesh(grid_mesh());
     ASSERT_FALSE(mesh.bvh.nodes().empty());
 
     std::mt19937 rng(5);
@@ -422,6 +429,84 @@ TEST(Accel, MeshHitsAreTheSameWhateverTheVisitingOrder) {
         ASSERT_EQ(got.v, expected.v) << "ray " << k;
     }
     EXPECT_GT(ties, 1000) << "too few ties to mean much";
+}
+
+// The item buffer's packets (World::intersect_one_packet, the exact resolve's 4×4 blocks that
+// name one object): each ray gets intersect_one's answer bit for bit (t, part, u, v), for every
+// shape (a mesh through its BVH as a packet, the others ray by ray) and every fill of a packet.
+// Rays are aimed at the grid mesh's vertices and edge midpoints (where watertightness and the
+// tie rule decide), graze its cells, or are camera blocks and random rays; the transforms are
+// random_scene's: thin, sheared, rotated, on a lattice. About 750,000 rays in Release.
+TEST(Accel, OneObjectPacketsAgreeExactlyWithSingleRays) {
+    std::mt19937 rng(31);
+    std::uniform_real_distribution<float> u(-1, 1), cell(0, static_cast<float>(kGrid - 1));
+    std::uint64_t rays = 0, mesh_hits = 0;
+    const unsigned scenes = testing::kUnderSanitizers ? 40 : 200;
+    for (unsigned seed = 0; seed < scenes; ++seed) {
+        Scene scene = random_scene(seed, 12);
+        scene.camera.eye = {0, 0, 0};
+        scene.camera.look_at = {0, 0, -1};
+        // The grid, a mesh of 1,062 triangles, placed like the random objects, a tenth its size.
+        scene.meshes.push_back(grid_mesh());
+        const std::uint32_t grid = static_cast<std::uint32_t>(scene.objects.size());
+        SceneObject o = scene.objects.back();
+        o.shape = ShapeKind::mesh;
+        o.mesh = static_cast<std::uint32_t>(scene.meshes.size() - 1);
+        o.transform = o.transform * scale_matrix(DVec3(0.1));
+        scene.objects.push_back(o);
+        const World world(scene);
+        const auto to_world = [&](Vec3 p) {
+            return Vec3(DVec3(o.transform * glm::dvec4(DVec3(p), 1.0)) - DVec3(scene.camera.eye));
+        };
+        for (int packet = 0; packet < 500; ++packet) {
+            const std::uint32_t object = packet % 2 ? grid : rng() % grid;
+            const std::size_t count = 1 + rng() % kMaxPacket;
+            const Vec3 eye(7 * u(rng), 7 * u(rng), 7 * u(rng));
+            Ray batch[kMaxPacket];
+            for (std::size_t r = 0; r < count; ++r) {
+                Vec3 target(cell(rng), 0.3f * static_cast<float>(rng() % 5), cell(rng));
+                switch (packet % 5) {
+                case 0: // at grid vertices
+                    target = glm::round(target);
+                    break;
+                case 1: // at edge midpoints
+                    target.x = std::round(target.x * 2) / 2, target.z = std::round(target.z);
+                    break;
+                case 2: // a 4×4 block of camera rays towards the grid's middle
+                    target = Vec3(12 + 0.3f * static_cast<float>(r % 4), 0.5f,
+                                  12 + 0.3f * static_cast<float>(r / 4));
+                    break;
+                default:
+                    break;
+                }
+                batch[r] = Ray{eye, to_world(target) - eye};
+                if (packet % 5 == 4) { // grazing: along the grid's cells, in its object space
+                    const Vec3 from = to_world({-1, target.y, target.z});
+                    const Vec3 to(static_cast<float>(kGrid), target.y, target.z + 0.01f * u(rng));
+                    batch[r] = Ray{from, to_world(to) - from};
+                }
+                if (packet % 7 == 6) batch[r] = random_ray(rng);
+                if (batch[r].direction == Vec3(0.0f)) batch[r].direction = {0, 0, 1};
+            }
+            Hit hits[kMaxPacket];
+            world.intersect_one_packet(object, {batch, count}, hits);
+            for (std::size_t r = 0; r < count; ++r, ++rays) {
+                const Hit expected = world.intersect_one(object, batch[r]);
+                mesh_hits += object == grid && expected.found();
+                const auto where = [&] {
+                    return "scene " + std::to_string(seed) + " packet " + std::to_string(packet) +
+                           " ray " + std::to_string(r);
+                };
+                ASSERT_EQ(hits[r].object, expected.object) << where();
+                ASSERT_EQ(hits[r].t, expected.t) << where();
+                ASSERT_EQ(hits[r].primitive, expected.primitive) << where();
+                ASSERT_EQ(hits[r].u, expected.u) << where();
+                ASSERT_EQ(hits[r].v, expected.v) << where();
+            }
+        }
+    }
+    EXPECT_GT(rays, scenes * 500 * 4);
+    EXPECT_GT(mesh_hits, rays / 5) << "too few of the grid's hits to mean much";
 }
 
 TEST(Accel, DefaultIsTheListForSmallScenesAndABvhBeyond) {

@@ -62,6 +62,16 @@ bool on_id_boundary(const IdImage& ids, int x, int y) {
     });
 }
 
+// Whether every pixel of [x0, x1) × [y0, y1) names `id`.
+bool one_object(const IdImage& ids, int x0, int y0, int x1, int y1, std::uint32_t id) {
+    for (int y = y0; y < y1; ++y) {
+        const std::uint32_t* row = &ids.ids[static_cast<std::size_t>(y) * ids.width];
+        for (int x = x0; x < x1; ++x)
+            if (row[x] != id) return false;
+    }
+    return true;
+}
+
 } // namespace
 
 namespace {
@@ -163,9 +173,11 @@ namespace {
 
 // resolve_pixel, with the camera ray made by make_ray() only where it is needed: a pixel where
 // nothing was drawn needs none under trust, nor under exact where no object is binned.
+// `named`, where given, is the ray's hit on the object the pixel names (intersect_one's answer,
+// found with its block's packet).
 template <class MakeRay>
 Hit resolve_with(const World& world, const IdImage& ids, Resolve resolve, int x, int y,
-                 const MakeRay& make_ray, PrimaryStats& stats) {
+                 const MakeRay& make_ray, PrimaryStats& stats, const Hit* named = nullptr) {
     const std::size_t p = static_cast<std::size_t>(y) * ids.width + x;
     const bool exact = resolve == Resolve::exact;
     const bool edge = exact && on_id_boundary(ids, x, y);
@@ -188,7 +200,7 @@ Hit resolve_with(const World& world, const IdImage& ids, Resolve resolve, int x,
     Hit hit;
     if (id != 0) {
         ++stats.exact_intersections;
-        hit = world.intersect_one(object, ray);
+        hit = named ? *named : world.intersect_one(object, ray);
         if (!hit.found()) { // inside the enclosing surface but outside the true one
             ++stats.fallbacks;
             return trace();
@@ -253,10 +265,35 @@ void tile_primary_hits(const World& world, const PrimarySource& source, const Ti
         }
         return;
     }
-    for (int y = r.y0; y < r.y1; ++y)
-        for (int x = r.x0; x < r.x1; ++x)
-            hits[at(x, y)] = resolve_with(
-                world, *source.ids, source.resolve, x, y, [&] { return camera.ray(x, y); }, stats);
+    // Hybrid: block by block. A whole block whose pixels all name one object is intersected
+    // with it as one packet (World::intersect_one_packet), each pixel's check then as alone.
+    const IdImage& ids = *source.ids;
+    for (int by = r.y0; by < r.y1; by += kBlockSize) {
+        for (int bx = r.x0; bx < r.x1; bx += kBlockSize) {
+            const int x1 = std::min(bx + kBlockSize, r.x1), y1 = std::min(by + kBlockSize, r.y1);
+            const auto pixel = [&](int x, int y) {
+                hits[at(x, y)] = resolve_with(
+                    world, ids, source.resolve, x, y, [&] { return camera.ray(x, y); }, stats);
+            };
+            const std::uint32_t id = ids.ids[static_cast<std::size_t>(by) * ids.width + bx];
+            if (id == 0 || !one_object(ids, bx, by, x1, y1, id)) {
+                for_each_in_blocks(bx, by, x1, y1, pixel);
+                continue;
+            }
+            Ray rays[kMaxPacket];
+            Hit named[kMaxPacket];
+            std::size_t count = 0;
+            for_each_in_blocks(bx, by, x1, y1,
+                               [&](int x, int y) { rays[count++] = camera.ray(x, y); });
+            world.intersect_one_packet(id - 1, {rays, count}, named);
+            count = 0;
+            for_each_in_blocks(bx, by, x1, y1, [&](int x, int y) {
+                const std::size_t k = count++;
+                hits[at(x, y)] = resolve_with(
+                    world, ids, source.resolve, x, y, [&] { return rays[k]; }, stats, &named[k]);
+            });
+        }
+    }
 }
 
 std::vector<Hit> primary_hits(const World& world, const PrimarySource& source, PrimaryStats& stats,

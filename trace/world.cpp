@@ -325,6 +325,31 @@ Hit World::intersect_one(std::uint32_t object, const Ray& ray, Real t_max) const
     return h.found() ? Hit{h.t, object, h.part, h.u, h.v} : Hit{};
 }
 
+void World::intersect_one_packet(std::uint32_t index, std::span<const Ray> rays, Hit* hits) const {
+    assert(rays.size() <= kMaxPacket);
+    const Object& object = objects_[index];
+    if (object.shape != ShapeKind::mesh) {
+        for (std::size_t r = 0; r < rays.size(); ++r) hits[r] = intersect_one(index, rays[r]);
+        return;
+    }
+    // intersect_one's steps for each ray (intersect_object: the shape in object space, then the
+    // box check after a hit), with the mesh's part taken by the packet.
+    const int count = static_cast<int>(rays.size());
+    Ray local[kMaxPacket] = {};
+    Real t_max[kMaxPacket] = {};
+    ShapeHit found[kMaxPacket];
+    for (int r = 0; r < count; ++r)
+        local[r] = object.transform.to_object(rays[r]), t_max[r] = kInfinity;
+    NoCounters none;
+    intersect_mesh_packet(*object.params.mesh, local, count, t_max, found, none);
+    for (int r = 0; r < count; ++r) {
+        const ShapeHit& h = found[r];
+        const bool kept =
+            h.found() && (!object.bounded || SlabRay(rays[r]).hits(object.bounds, loose(t_max[r])));
+        hits[r] = kept ? Hit{h.t, index, h.part, h.u, h.v} : Hit{};
+    }
+}
+
 SurfacePoint World::surface(const Ray& ray, const Hit& hit) const {
     const Object& object = objects_[hit.object];
     const Transform& m = object.transform;

@@ -130,6 +130,10 @@ class World {
                          bool* occluded) const;
     // The first hit on one object alone, in (0, t_max).
     Hit intersect_one(std::uint32_t object, const Ray& ray, Real t_max = kInfinity) const;
+    // The same for a packet of up to kMaxPacket coherent rays (an item buffer's block of pixels
+    // that all name `object`): hits[i] = intersect_one(object, rays[i]), bit for bit. A mesh's
+    // own BVH is traversed by the packet; other shapes are one test per ray either way.
+    void intersect_one_packet(std::uint32_t object, std::span<const Ray> rays, Hit* hits) const;
     SurfacePoint surface(const Ray& ray, const Hit& hit) const;
 
     const PinholeCamera& camera() const { return camera_; }

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <limits>
+#include <optional>
 #include <vector>
 
 namespace glint {
@@ -110,6 +111,17 @@ inline Mesh prepare_mesh(const TriangleMesh& given) {
     return mesh;
 }
 
+// Triangle `triangle` (its corners in slot `slot`) for one ray: replaces `best` when it is hit
+// in (0, t_max) nearer, or as near with a lower triangle index. The one test of both
+// intersect_mesh and intersect_mesh_packet.
+inline void consider_triangle(const Mesh& mesh, std::uint32_t slot, std::uint32_t triangle,
+                              const WatertightRay& ray, Real t_max, ShapeHit& best) {
+    const std::array<Vec3, 3>& c = mesh.corners[slot];
+    const TriangleHit h = intersect_triangle(c[0], c[1], c[2], ray);
+    if (h.t > 0 && h.t < t_max && (h.t < best.t || (h.t == best.t && triangle < best.part)))
+        best = {h.t, triangle, h.u, h.v};
+}
+
 // The nearest triangle below t_max: through the mesh's own BVH (the bottom level of a two-level
 // structure), or, for meshes too small to have one, all of them. Boxes are pruned against the
 // limit loosely (loose(), trace/math.h), triangles strictly. On equal t the lower triangle index
@@ -119,27 +131,53 @@ template <class Counters>
 ShapeHit intersect_mesh(const Mesh& mesh, const Ray& ray, Real t_max, Counters& counters) {
     ShapeHit best;
     const WatertightRay prepared(ray); // once per ray, not per triangle
-    const auto test = [&](std::uint32_t slot, std::uint32_t triangle) {
-        const std::array<Vec3, 3>& c = mesh.corners[slot];
-        const TriangleHit h = intersect_triangle(c[0], c[1], c[2], prepared);
-        if (h.t > 0 && h.t < t_max && (h.t < best.t || (h.t == best.t && triangle < best.part)))
-            best = {h.t, triangle, h.u, h.v};
-    };
     Real box_limit = loose(t_max);
     if (!mesh.bvh.nodes().empty()) {
         const std::vector<std::uint32_t>& triangles = mesh.bvh.items();
-        mesh.bvh.traverse_leaves(ray, box_limit, counters,
-                                 [&](std::uint32_t begin, std::uint32_t end, Real& limit) {
-                                     for (std::uint32_t slot = begin; slot < end; ++slot)
-                                         counters.primitive(), test(slot, triangles[slot]);
-                                     limit = loose(std::min(best.t, t_max));
-                                     return false;
-                                 });
+        mesh.bvh.traverse_leaves(
+            ray, box_limit, counters, [&](std::uint32_t begin, std::uint32_t end, Real& limit) {
+                for (std::uint32_t slot = begin; slot < end; ++slot) {
+                    counters.primitive();
+                    consider_triangle(mesh, slot, triangles[slot], prepared, t_max, best);
+                }
+                limit = loose(std::min(best.t, t_max));
+                return false;
+            });
     } else {
         if (!SlabRay(ray).hits(mesh.bounds, box_limit)) return {};
-        for (std::uint32_t i = 0; i < mesh.triangles.size(); ++i) counters.primitive(), test(i, i);
+        for (std::uint32_t i = 0; i < mesh.triangles.size(); ++i)
+            counters.primitive(), consider_triangle(mesh, i, i, prepared, t_max, best);
     }
     return best;
+}
+
+// intersect_mesh for `count` ≤ kMaxPacket coherent rays at once (an item buffer's block of
+// pixels that name the mesh): best[r] = intersect_mesh(mesh, rays[r], t_max[r]), bit for bit.
+// Through the mesh's BVH as a packet (WideBvh::traverse_packet, which offers each ray the leaves
+// its own traversal could be offered, in another order; the tie rule makes the order
+// irrelevant); a mesh without one, ray by ray.
+template <class Counters>
+void intersect_mesh_packet(const Mesh& mesh, const Ray* rays, int count, const Real* t_max,
+                           ShapeHit* best, Counters& counters) {
+    if (mesh.bvh.nodes().empty()) {
+        for (int r = 0; r < count; ++r) best[r] = intersect_mesh(mesh, rays[r], t_max[r], counters);
+        return;
+    }
+    std::optional<WatertightRay> prepared[kMaxPacket]; // made on a ray's first leaf
+    Real box_limit[kMaxPacket];
+    for (int r = 0; r < count; ++r) best[r] = {}, box_limit[r] = loose(t_max[r]);
+    const std::vector<std::uint32_t>& triangles = mesh.bvh.items();
+    mesh.bvh.traverse_packet(rays, count, box_limit, counters,
+                             [&](int r, std::uint32_t begin, std::uint32_t end, Real& limit) {
+                                 if (!prepared[r]) prepared[r].emplace(rays[r]);
+                                 for (std::uint32_t slot = begin; slot < end; ++slot) {
+                                     counters.primitive();
+                                     consider_triangle(mesh, slot, triangles[slot], *prepared[r],
+                                                       t_max[r], best[r]);
+                                 }
+                                 limit = loose(std::min(best[r].t, t_max[r]));
+                                 return false;
+                             });
 }
 
 // The surface at barycentric weights (u, v) of triangle `triangle`'s vertices 1 and 2, as its
