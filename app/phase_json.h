@@ -7,10 +7,13 @@
 
 namespace glint {
 
-// {"context": …, "compile": …, "upload": …, "raster": …, "primary": …, "shading": …}, seconds.
+// {"context": …, "compile": …, "upload": …, "raster": …, "primary": …, "shading": …,
+// "overlapped": …}, seconds: each phase's wall time, and how much of the GL pass's ran beside
+// the World's preparation (PhaseTimes::overlapped).
 inline nlohmann::ordered_json phase_seconds_json(const PhaseTimes& t) {
-    return {{"context", t.context}, {"compile", t.compile}, {"upload", t.upload},
-            {"raster", t.raster},   {"primary", t.primary}, {"shading", t.shading}};
+    return {{"context", t.context},      {"compile", t.compile}, {"upload", t.upload},
+            {"raster", t.raster},        {"primary", t.primary}, {"shading", t.shading},
+            {"overlapped", t.overlapped}};
 }
 
 } // namespace glint

@@ -34,7 +34,7 @@ template <> struct RecordFields<PhaseTimes> {
     template <class R, class V> static void visit(R& r, V&& v) {
         v("prepare", r.prepare), v("context", r.context), v("compile", r.compile);
         v("upload", r.upload), v("raster", r.raster), v("primary", r.primary);
-        v("shading", r.shading);
+        v("shading", r.shading), v("overlapped", r.overlapped);
     }
 };
 

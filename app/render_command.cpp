@@ -3,6 +3,7 @@
 #include "app/options.h"
 #include "app/phase_json.h"
 #include "app/progress.h"
+#include "frame/gl_pass.h"
 
 #include "trace/cutoff.h"
 #include "trace/exr.h"
@@ -117,6 +118,7 @@ nlohmann::ordered_json stats_json(const RenderReport& r) {
     };
     nlohmann::ordered_json& seconds = stats["seconds"];
     seconds.update(phase_seconds_json(t));
+    seconds["frame"] = t.total(); // from the World to the last pixel, wall time
     seconds["write"] = r.write_seconds;
     seconds["total"] = r.total_seconds;
     // Per ray: over every query the tracer made (primary, shadow, reflected and transmitted
@@ -255,16 +257,20 @@ int run_render(const RenderArgs& args) {
     if (const int status = agree_on([&] { job = prepare(args); })) return status;
     const Scene& scene = job.scene;
     const double load_seconds = phase.lap();
+    FrameSettings settings = args.frame.settings();
+    // Hybrid: the GL pass makes its context and shaders on its own thread while the World is
+    // built here (frame/gl_pass.h).
+    std::optional<GlPass> gl;
+    if (needs_gl(settings, scene.objects.size())) gl.emplace(settings);
     World world(scene, args.scene.accel_kind());
     if (!args.stats.empty()) world.count_traversals(true);
     const double prepare_seconds = phase.lap();
 
     const int tiles = tile_count(scene.camera.width, scene.camera.height);
     const std::unique_ptr<TileExchange> exchange = on_ranks() ? make_exchange(tiles) : nullptr;
-    FrameSettings settings = args.frame.settings();
     settings.exchange = exchange.get();
-    settings.aovs = wants(job.aovs, Aov::depth) || wants(job.aovs, Aov::normal) ||
-                    wants(job.aovs, Aov::id);
+    settings.aovs =
+        wants(job.aovs, Aov::depth) || wants(job.aovs, Aov::normal) || wants(job.aovs, Aov::id);
     std::atomic<int> tiles_done{0};
     Frame frame;
     {
@@ -275,7 +281,7 @@ int run_render(const RenderArgs& args) {
         const std::optional<Progress> progress =
             rank() == 0 ? std::optional<Progress>(std::in_place, "rendering", steps, tiles_done)
                         : std::nullopt;
-        frame = render_frame(world, settings, &tiles_done);
+        frame = render_frame(world, settings, &tiles_done, gl ? &*gl : nullptr);
     }
     const double frame_seconds = phase.lap();
     const int threads =

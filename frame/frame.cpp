@@ -1,5 +1,7 @@
 #include "frame/frame.h"
 
+#include "frame/gl_pass.h"
+
 #include "trace/stopwatch.h"
 
 #include <stdexcept>
@@ -8,35 +10,10 @@ namespace glint {
 
 void draw_item_buffers(const World& world, const FrameSettings& settings, Frame& frame) {
     // Model only what the scene needs: ray mode and an empty scene get no GL context.
-    if (settings.mode != Mode::hybrid || world.objects().empty()) return;
-    // The GL pass runs before the tracing, not beside it: on 2 cores they would only compete.
-    const auto context = timed(frame.times.context, [&] { return make_context(settings.gl); });
-    frame.gl_renderer = context->renderer();
-    ItemBuffer items = timed(frame.times.compile, [] { return ItemBuffer(); });
-    timed(frame.times.upload, [&] {
-        items.upload(world, settings.raster, settings.tessellation);
-        return 0;
-    });
-    // Pixel centres where a pass takes them (N = 1, adaptive's first pass), and the N×N
-    // sample grid where one is traced (antialiasing, trace/sampling.h).
-    const RenderSettings& render = world.settings();
-    if (render.samples == 1 || render.antialias == Antialias::adaptive)
-        frame.items = timed(frame.times.raster, [&] { return items.draw(world); });
-    // Adaptive without rule 3 traces its refined pixels' samples by ray: they are a few
-    // percent of the N×N grid, which would cost N² item buffers to draw.
-    const bool sample_grid =
-        render.samples > 1 && (render.antialias == Antialias::uniform || settings.aa_sample_ids);
-    if (sample_grid)
-        frame.sample_items =
-            timed(frame.times.raster, [&] { return items.draw(world, false, render.samples); });
-    frame.deviations = items.deviations();
-    frame.proxies = items.proxies(), frame.tessellated = items.tessellated();
-    // The resolve's bins (trace/primary_hits.h) count as resolving: trace/ builds them.
-    timed(frame.times.primary, [&] {
-        if (frame.items) bin_objects(world, frame.items->ids);
-        if (frame.sample_items) bin_objects(world, frame.sample_items->ids);
-        return 0;
-    });
+    if (!needs_gl(settings, world.objects().size())) return;
+    GlPass pass(settings);
+    pass.draw(world);
+    pass.finish(frame);
 }
 
 PrimarySource primary_source(const Frame& frame, Resolve resolve) {
@@ -48,13 +25,18 @@ PrimarySource primary_source(const Frame& frame, Resolve resolve) {
     return source;
 }
 
-Frame render_frame(const World& world, const FrameSettings& settings,
-                   std::atomic<int>* tiles_done) {
+Frame render_frame(const World& world, const FrameSettings& settings, std::atomic<int>* tiles_done,
+                   GlPass* pass) {
     Frame frame;
-    draw_item_buffers(world, settings, frame);
-    frame.result = trace_frame(world, primary_source(frame, settings.resolve), frame.primary_stats,
-                               {settings.threads, tiles_done, settings.exchange}, frame.times,
-                               settings.aovs);
+    if (pass) {
+        pass->draw(world);
+        pass->finish(frame);
+    } else {
+        draw_item_buffers(world, settings, frame);
+    }
+    frame.result =
+        trace_frame(world, primary_source(frame, settings.resolve), frame.primary_stats,
+                    {settings.threads, tiles_done, settings.exchange}, frame.times, settings.aovs);
     return frame;
 }
 
@@ -70,10 +52,13 @@ Frame render_frame(const Scene& scene, std::optional<AccelKind> accel,
                              {settings.threads, tiles_done, settings.exchange}, frame.times);
         return frame;
     }
+    // The GL pass starts first and makes its context and shaders while the World is built.
+    std::optional<GlPass> pass;
+    if (needs_gl(settings, scene.objects.size())) pass.emplace(settings);
     double prepare = 0;
     const World world = timed(
         prepare, [&] { return geometry ? World(scene, geometry, accel) : World(scene, accel); });
-    Frame frame = render_frame(world, settings, tiles_done);
+    Frame frame = render_frame(world, settings, tiles_done, pass ? &*pass : nullptr);
     frame.times.prepare = prepare;
     return frame;
 }

@@ -52,18 +52,21 @@ struct Frame {
 
 // Hybrid mode's GL pass for a frame of `world` (nothing in ray mode or for an empty scene): the
 // context, the item buffers the scene's antialiasing needs, their bins for the exact resolve,
-// into `frame` (items, sample_items, deviations, proxies, gl_renderer, times). Throws GlError
-// when there is no GL context.
+// into `frame` (items, sample_items, deviations, proxies, gl_renderer, times), made on a GL
+// thread (frame/gl_pass.h) and waited for. Throws GlError when there is no GL context.
 void draw_item_buffers(const World& world, const FrameSettings& settings, Frame& frame);
 
 // Where the frame's primary hits come from: its item buffers (resolved as `resolve` says), or
 // every camera ray when it has none. Points into `frame`.
 PrimarySource primary_source(const Frame& frame, Resolve resolve);
 
+class GlPass; // frame/gl_pass.h
+
 // From a prepared World (float precision; times.prepare stays 0). Throws GlError when hybrid
-// mode cannot get a GL context.
+// mode cannot get a GL context. `pass`: a GL pass started before the World was built (so that
+// its context and shaders were made beside it), or null to start one here where one is needed.
 Frame render_frame(const World& world, const FrameSettings& settings,
-                   std::atomic<int>* tiles_done = nullptr);
+                   std::atomic<int>* tiles_done = nullptr, GlPass* pass = nullptr);
 
 // From a scene: prepares the World in settings.precision (timed as times.prepare), then renders.
 // `geometry`, when given, is the scene's already prepared (float precision; a sweep over one

@@ -5,6 +5,7 @@
 #include "test_scenes.h"
 
 #include "frame/frame.h"
+#include "frame/gl_pass.h"
 #include "raster/tessellation.h"
 #include "trace/image_metrics.h"
 
@@ -185,6 +186,41 @@ TEST_P(GlTest, HybridEqualsRayModeWithSamplesUniformAndAdaptive) {
             }
         }
     }
+}
+
+// The GL pass on its own thread (frame/gl_pass.h), started before the World is built as render
+// starts it: the frame is ray mode's, byte for byte, on 1 and 2 threads, on a scene of meshes
+// (whose 4×4 blocks the resolve intersects as packets) and a crowd of spheres; what ran beside
+// the World's preparation is counted once. A failure during the overlapped draw (a sample grid
+// beyond GL's largest target, which render refuses before drawing but the frame does not) comes
+// back as the GlError it is, and a pass that is never handed a World ends cleanly.
+TEST_P(GlTest, TheOverlappedGlPassChangesNoImageAndFailsCleanly) {
+    constexpr int kWidth = 160 / testing::kSanitizerShrink,
+                  kHeight = 120 / testing::kSanitizerShrink;
+    for (const char* name :
+         {"tests/data/spd/teapot-2.nff", "tests/data/spd/balls-1.nff", "scenes/default.json"}) {
+        Scene scene = load_scene(std::string(GLINT_SOURCE_DIR "/") + name);
+        scene.camera.width = kWidth, scene.camera.height = kHeight;
+        FrameSettings settings{
+            Mode::ray, GetParam(), RasterMode::automatic, kDefaultTessellation, Resolve::exact, 1};
+        const Image ray = render_frame(scene, std::nullopt, settings).result.bytes();
+        settings.mode = Mode::hybrid;
+        for (const int threads : {1, 2}) {
+            settings.threads = threads;
+            const Frame hybrid = render_frame(scene, std::nullopt, settings);
+            EXPECT_EQ(hybrid.result.bytes().rgb, ray.rgb) << name << ", " << threads << " threads";
+            const PhaseTimes& t = hybrid.times;
+            EXPECT_GE(t.overlapped, 0) << name;
+            EXPECT_LE(t.overlapped, t.context + t.compile + t.upload + t.raster + t.primary)
+                << name;
+            EXPECT_GT(hybrid.result.rays.primary, 0u) << name;
+        }
+    }
+    Scene wide = testing::shipped("default", 1100, 8);
+    wide.render.samples = 16, wide.render.antialias = Antialias::uniform;
+    const FrameSettings hybrid{Mode::hybrid, GetParam()};
+    EXPECT_THROW(render_frame(wide, std::nullopt, hybrid), GlError);
+    { const GlPass never_handed(hybrid); }
 }
 
 // A box 0.3 pixels wide standing on the boundary between two pixel columns: every pixel centre

@@ -90,6 +90,10 @@ struct PhaseTimes {
     double raster = 0;  // drawing the item buffer and reading it back
     double primary = 0; // resolving primary hits (hybrid) or casting primary rays (ray)
     double shading = 0; // shading, shadow and reflection rays
+    // Hybrid: the seconds of the GL pass (context, compile, upload, raster and the bins, each
+    // counted in its phase above) that ran beside the World's preparation on the pass's own
+    // thread (frame/gl_pass.h), so added nothing to the frame's wall time. 0 in ray mode.
+    double overlapped = 0;
 
     double primary_visibility() const { return raster + primary; }
     // A loop that did both per tile took `wall` seconds: shared between primary and shading in
@@ -100,8 +104,9 @@ struct PhaseTimes {
         primary += wall * primary_share;
         shading += wall * (1 - primary_share);
     }
+    // The frame's wall time: its phases, less what ran beside another.
     double total() const {
-        return prepare + context + compile + upload + raster + primary + shading;
+        return prepare + context + compile + upload + raster + primary + shading - overlapped;
     }
 };
 
