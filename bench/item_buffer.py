@@ -4,7 +4,7 @@ hybrid, in one process: each ratio compares two renders made side by side) on sc
 one size and raster setting, and prints a markdown table and the largest ratios.
 
     python3 bench/item_buffer.py [--glint build/app/glint] [--size 1920x1080] [--raster auto]
-                                 [--samples N] SCENE...
+                                 [--gl osmesa|egl] [--samples N] SCENE...
 
 Columns: raster and resolve seconds of the hybrid frame; primary = ray mode's primary rays;
 primary visibility = (raster + resolve) / primary; resolve share = resolve / primary; whole
@@ -22,10 +22,11 @@ def main() -> None:
     parser.add_argument("--glint", default="build/app/glint")
     parser.add_argument("--size", default="1920x1080")
     parser.add_argument("--raster", default="auto")
+    parser.add_argument("--gl", default="osmesa", choices=["osmesa", "egl"])
     parser.add_argument("--samples", help="override the scenes' samples per pixel")
     parser.add_argument("scenes", nargs="+")
     args = parser.parse_args()
-    print(f"`glint compare --size {args.size} --raster {args.raster}`"
+    print(f"`glint compare --size {args.size} --raster {args.raster} --gl {args.gl}`"
           + (f" `--samples {args.samples}`" if args.samples else "") + ", each scene's other settings\n")
     print("| scene | proxies | tessellations | raster s | resolve s | primary s | primary visibility | resolve share |"
           " whole frame | same |")
@@ -35,7 +36,7 @@ def main() -> None:
         out = Path(tmp) / "compare.json"
         for scene in args.scenes:
             command = [args.glint, "compare", scene, "--size", args.size, "--raster", args.raster,
-                       "--json", str(out)]
+                       "--gl", args.gl, "--json", str(out)]
             if args.samples:
                 command += ["--samples", args.samples]
             subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
