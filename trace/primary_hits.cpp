@@ -115,10 +115,11 @@ void bin_objects(const World& world, IdImage& ids) {
     const PinholeCamera& camera = world.camera();
     const std::vector<Object>& objects = world.objects();
     const auto count = static_cast<std::uint32_t>(objects.size());
-    const auto widened = [](std::uint32_t object, double near, double far) {
+    const PixelRect image{0, 0, ids.width - 1, ids.height - 1};
+    const auto widened = [](std::uint32_t object, double near, double far, PixelRect pixels) {
         return ScreenBins::Entry{object,
                                  static_cast<Real>(near - kDepthRangeSlack * std::abs(near)),
-                                 static_cast<Real>(far + kDepthRangeSlack * std::abs(far))};
+                                 static_cast<Real>(far + kDepthRangeSlack * std::abs(far)), pixels};
     };
     // Bounded objects: one range each, and their rectangles' bins, or every bin when they reach
     // behind the eye.
@@ -129,8 +130,8 @@ void bin_objects(const World& world, IdImage& ids) {
         if (!objects[i].bounded) continue;
         const ProjectedBounds seen =
             project_bounds(camera, objects[i].bounds, ids.width, ids.height);
-        ranges[i] = widened(i, seen.near, seen.far);
         rects[i] = seen.pixels;
+        ranges[i] = widened(i, seen.near, seen.far, rects[i].value_or(image));
         if (!rects[i]) bins.everywhere.push_back(ranges[i]);
     }
     // Every entry of object i: body(bin, entry). A plane has a range per bin (plane_depths, over
@@ -144,7 +145,7 @@ void bin_objects(const World& world, IdImage& ids) {
                                          bx * k - 1, by * k - 1, std::min(bx * k + k, ids.width),
                                          std::min(by * k + k, ids.height)))
                         body(static_cast<std::size_t>(by) * bins.columns + bx,
-                             widened(i, z->first, z->second));
+                             widened(i, z->first, z->second, image));
             return;
         }
         if (!rects[i]) return;
@@ -214,7 +215,9 @@ Hit resolve_with(const World& world, const IdImage& ids, Resolve resolve, int x,
     const Real limit = hit.found() ? std::nextafter(hit.t, kInfinity) : kInfinity;
     bool tested = false;
     const auto in_front = [&](const ScreenBins::Entry& other) {
-        if (other.object == object || other.near > z_hit || other.far < z_from) return false;
+        if (other.object == object || other.near > z_hit || other.far < z_from ||
+            !other.covers(x, y))
+            return false;
         tested = true;
         ++stats.tests;
         const Hit h = world.intersect_one(other.object, ray, limit);

@@ -24,14 +24,22 @@ inline namespace GLINT_PRECISION {
 
 // Which objects the rays of each 8×8 bin of an id image's pixels may meet, each with its range of
 // view depth (distance along the camera's forward axis) there (bin_objects): a bounded object in
-// the bins its projected bounds cover, with its bounds' range; a plane in the bins where it lies
-// in front of the eye, with its range over the bin. The exact resolve tests only these, and of
-// them only those whose range reaches the interval it must check (primary_hits.cpp).
+// the bins its projected bounds cover, with its bounds' range and pixels; a plane in the bins
+// where it lies in front of the eye, with its range over the bin. The exact resolve tests only
+// these, and of them only those whose pixels hold the pixel and whose range reaches the
+// interval it must check (primary_hits.cpp).
 struct ScreenBins {
     static constexpr int kSize = 8; // pixels on a side of a bin
     struct Entry {
         std::uint32_t object;
         Real near, far; // widened
+        // The pixels its projected bounds cover (project_bounds: one pixel wider than its
+        // corners'); the whole image for a plane and for bounds reaching behind the eye.
+        PixelRect pixels;
+
+        bool covers(int x, int y) const {
+            return x >= pixels.x0 && x <= pixels.x1 && y >= pixels.y0 && y <= pixels.y1;
+        }
     };
     int columns = 0, rows = 0;
     std::vector<std::uint32_t> first; // per bin, its first entry in `entries` (+ one end)
