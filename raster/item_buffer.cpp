@@ -128,7 +128,8 @@ struct ItemBuffer::Impl {
     };
 
     GLuint mesh_program = 0, proxy_program = 0, empty_vao = 0, instance_buffer = 0;
-    GLuint framebuffer = 0, colour = 0, depth = 0, pack_buffer = 0;
+    GLuint framebuffer = 0, colour = 0, depth = 0;
+    GLuint pack_buffers[2] = {0, 0}; // ids, depth
     GLuint flat_colour = 0; // RGBA8, attachment 1, made on the first flat-preview draw
     int width = 0, height = 0;
     int sample_grid = 1; // the draw's N: the target is N× the camera's image on each side
@@ -147,7 +148,7 @@ struct ItemBuffer::Impl {
         glDeleteVertexArrays(1, &empty_vao);
         glDeleteBuffers(1, &instance_buffer);
         glDeleteFramebuffers(1, &framebuffer);
-        glDeleteBuffers(1, &pack_buffer);
+        glDeleteBuffers(2, pack_buffers);
         glDeleteTextures(1, &colour);
         glDeleteRenderbuffers(1, &flat_colour);
         glDeleteRenderbuffers(1, &depth);
@@ -299,42 +300,55 @@ struct ItemBuffer::Impl {
 
     ItemBufferResult read_back(float near) {
         const std::size_t pixels = static_cast<std::size_t>(width) * height;
+        const auto bytes = static_cast<GLsizeiptr>(pixels * 4);
+        // The result's buffers first: draw() flushed the pass, so llvmpipe's threads rasterize
+        // while this thread allocates (and faults in) 2 × 4 bytes a pixel.
         ItemBufferResult result;
         result.ids.width = width, result.ids.height = height;
         result.ids.ids.resize(pixels);
         result.ids.view_depth.resize(pixels);
-        std::vector<float> depths(pixels);
         glPixelStorei(GL_PACK_ALIGNMENT, 4);
-        // Ids through a pixel-pack buffer: once warm, Mesa copies R32UI into it as it is
-        // (9 ms at 1600×1200 on llvmpipe), where a plain glReadPixels or glGetTexImage converts
-        // pixel by pixel (65 ms).
-        if (!pack_buffer) glGenBuffers(1, &pack_buffer);
-        glBindBuffer(GL_PIXEL_PACK_BUFFER, pack_buffer);
-        glBufferData(GL_PIXEL_PACK_BUFFER, static_cast<GLsizeiptr>(pixels * 4), nullptr,
-                     GL_STREAM_READ);
-        glReadBuffer(GL_COLOR_ATTACHMENT0);
-        glReadPixels(0, 0, width, height, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
-        const auto* drawn = static_cast<const std::uint32_t*>(glMapBufferRange(
-            GL_PIXEL_PACK_BUFFER, 0, static_cast<GLsizeiptr>(pixels * 4), GL_MAP_READ_BIT));
-        glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-        glReadPixels(0, 0, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, depths.data());
-        std::uint32_t* ids = result.ids.ids.data();
-        float* view_depth = result.ids.view_depth.data();
-        for (int y = 0; y < height; ++y) {
-            const std::size_t from =
-                static_cast<std::size_t>(height - 1 - y) * width; // GL's row 0 is the bottom
-            const std::size_t to = static_cast<std::size_t>(y) * width;
-            for (int x = 0; x < width; ++x) {
-                ids[to + x] = drawn[from + x];
-                const float d = depths[from + x];
-                view_depth[to + x] = d > 0 ? near / d : kInfinity;
+        // Ids and depth through pixel-pack buffers: once warm, Mesa copies R32UI into one as it
+        // is (9 ms at 1600×1200 on llvmpipe), where a plain glReadPixels or glGetTexImage
+        // converts pixel by pixel (65 ms); depth lands there with no copy of our own.
+        if (!pack_buffers[0]) glGenBuffers(2, pack_buffers);
+        const auto read = [&](GLuint buffer, GLenum attachment, GLenum format, GLenum type) {
+            glBindBuffer(GL_PIXEL_PACK_BUFFER, buffer);
+            glBufferData(GL_PIXEL_PACK_BUFFER, bytes, nullptr, GL_STREAM_READ);
+            if (attachment != GL_NONE) glReadBuffer(attachment);
+            glReadPixels(0, 0, width, height, format, type, nullptr);
+        };
+        read(pack_buffers[0], GL_COLOR_ATTACHMENT0, GL_RED_INTEGER, GL_UNSIGNED_INT);
+        read(pack_buffers[1], GL_NONE, GL_DEPTH_COMPONENT, GL_FLOAT);
+        const auto map = [&](GLuint buffer) {
+            glBindBuffer(GL_PIXEL_PACK_BUFFER, buffer);
+            return glMapBufferRange(GL_PIXEL_PACK_BUFFER, 0, bytes, GL_MAP_READ_BIT);
+        };
+        const void* mapped[2] = {map(pack_buffers[0]), map(pack_buffers[1])};
+        const auto* drawn = static_cast<const std::uint32_t*>(mapped[0]);
+        const auto* depths = static_cast<const float*>(mapped[1]);
+        if (drawn && depths) {
+            std::uint32_t* ids = result.ids.ids.data();
+            float* view_depth = result.ids.view_depth.data();
+            for (int y = 0; y < height; ++y) {
+                const std::size_t from =
+                    static_cast<std::size_t>(height - 1 - y) * width; // GL's row 0 is the bottom
+                const std::size_t to = static_cast<std::size_t>(y) * width;
+                for (int x = 0; x < width; ++x) {
+                    ids[to + x] = drawn[from + x];
+                    const float d = depths[from + x];
+                    view_depth[to + x] = d > 0 ? near / d : kInfinity;
+                }
             }
         }
-        glBindBuffer(GL_PIXEL_PACK_BUFFER, pack_buffer);
-        glUnmapBuffer(GL_PIXEL_PACK_BUFFER);
+        for (int k = 0; k < 2; ++k) {
+            glBindBuffer(GL_PIXEL_PACK_BUFFER, pack_buffers[k]);
+            if (mapped[k]) glUnmapBuffer(GL_PIXEL_PACK_BUFFER);
+        }
         glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
         if (const GLenum error = glGetError(); error != GL_NO_ERROR)
             throw GlError("OpenGL error " + std::to_string(error) + " in the item-buffer pass");
+        if (!drawn || !depths) throw GlError("the item buffer's read-back could not be mapped");
         return result;
     }
 };
@@ -581,6 +595,7 @@ ItemBufferResult ItemBuffer::draw(const World& world, bool flat_preview, int sam
         gl.draw_plane(world, plane, clip, near, flat_preview);
     if (!gl.instances_of.empty()) gl.draw_instanced(world, clip, near, flat_preview);
     glBindVertexArray(0);
+    glFlush(); // llvmpipe starts rasterizing on its threads; read_back waits for it
     ItemBufferResult result = gl.read_back(near);
     if (flat_preview) result.flat = gl.read_flat();
     return result;
