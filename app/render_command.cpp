@@ -269,8 +269,8 @@ int run_render(const RenderArgs& args) {
     const int tiles = tile_count(scene.camera.width, scene.camera.height);
     const std::unique_ptr<TileExchange> exchange = on_ranks() ? make_exchange(tiles) : nullptr;
     settings.exchange = exchange.get();
-    settings.aovs =
-        wants(job.aovs, Aov::depth) || wants(job.aovs, Aov::normal) || wants(job.aovs, Aov::id);
+    settings.aovs = wants(job.aovs, Aov::depth) || wants(job.aovs, Aov::normal) ||
+                    wants(job.aovs, Aov::id);
     std::atomic<int> tiles_done{0};
     Frame frame;
     {
