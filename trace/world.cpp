@@ -17,6 +17,18 @@ Bounds world_bounds(const std::pair<DVec3, DVec3>& local, const DMat4& m) {
     return {Vec3(lo - pad), Vec3(hi + pad)};
 }
 
+// Whether a shape's hit on `object` stands: a ray's hit counts only where the ray also meets the
+// object's box within t_max (World::intersect_object says why), loosely, as the structures
+// prune.
+bool within_box(const Object& object, const ShapeHit& hit, const LazySlab& slab, Real t_max) {
+    return !hit.found() || !object.bounded || slab.get().hits(object.bounds, loose(t_max));
+}
+
+// A shape's hit on object `index` as the World's Hit, or no hit.
+Hit hit_on(std::uint32_t index, const ShapeHit& h) {
+    return h.found() ? Hit{h.t, index, h.part, h.u, h.v} : Hit{};
+}
+
 } // namespace
 
 SceneGeometry::SceneGeometry(const Scene& scene) : textures(scene.textures) {
@@ -126,10 +138,7 @@ template <class Counters>
 ShapeHit World::intersect_object(const Object& object, const Ray& world_ray, const LazySlab& slab,
                                  Real t_max, bool box_tested, Counters& counters) const {
     const ShapeHit hit = intersect_shape(object, world_ray, t_max, counters);
-    if (hit.found() && object.bounded && !box_tested &&
-        !slab.get().hits(object.bounds, loose(t_max)))
-        return {};
-    return hit;
+    return box_tested || within_box(object, hit, slab, t_max) ? hit : ShapeHit{};
 }
 
 template <class Counters>
@@ -321,8 +330,8 @@ void World::occluded_packet(std::span<const Ray> rays, Real t_max, const std::ui
 
 Hit World::intersect_one(std::uint32_t object, const Ray& ray, Real t_max) const {
     NoCounters none;
-    const ShapeHit h = intersect_object(objects_[object], ray, LazySlab(ray), t_max, false, none);
-    return h.found() ? Hit{h.t, object, h.part, h.u, h.v} : Hit{};
+    return hit_on(object,
+                  intersect_object(objects_[object], ray, LazySlab(ray), t_max, false, none));
 }
 
 void World::intersect_one_packet(std::uint32_t index, std::span<const Ray> rays, Hit* hits) const {
@@ -342,12 +351,10 @@ void World::intersect_one_packet(std::uint32_t index, std::span<const Ray> rays,
         local[r] = object.transform.to_object(rays[r]), t_max[r] = kInfinity;
     NoCounters none;
     intersect_mesh_packet(*object.params.mesh, local, count, t_max, found, none);
-    for (int r = 0; r < count; ++r) {
-        const ShapeHit& h = found[r];
-        const bool kept =
-            h.found() && (!object.bounded || SlabRay(rays[r]).hits(object.bounds, loose(t_max[r])));
-        hits[r] = kept ? Hit{h.t, index, h.part, h.u, h.v} : Hit{};
-    }
+    for (int r = 0; r < count; ++r)
+        hits[r] = within_box(object, found[r], LazySlab(rays[r]), t_max[r])
+                      ? hit_on(index, found[r])
+                      : Hit{};
 }
 
 SurfacePoint World::surface(const Ray& ray, const Hit& hit) const {
