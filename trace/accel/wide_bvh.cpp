@@ -73,9 +73,33 @@ Bounds refit(std::vector<WideBvhNode>& nodes, const std::vector<std::uint32_t>& 
     return all;
 }
 
+// Moves every leaf's items to a first slot that is a multiple of `alignment`, in slot order,
+// with kEmptyChild in the slots left between them.
+void align_leaves(std::vector<WideBvhNode>& nodes, std::vector<std::uint32_t>& items,
+                  std::uint32_t alignment) {
+    std::vector<std::pair<std::uint32_t, std::uint32_t*>> leaves; // first slot, where it is kept
+    for (WideBvhNode& node : nodes)
+        for (int lane = 0; lane < kBvhWidth; ++lane)
+            if (node.child[lane] != kEmptyChild && node.count[lane] > 0)
+                leaves.emplace_back(node.child[lane], &node.child[lane]);
+    std::sort(leaves.begin(), leaves.end());
+    std::vector<std::uint32_t> aligned;
+    aligned.reserve(items.size() + leaves.size() * (alignment - 1));
+    for (std::size_t k = 0; k < leaves.size(); ++k) {
+        const std::uint32_t first = leaves[k].first;
+        const std::uint32_t end =
+            k + 1 < leaves.size() ? leaves[k + 1].first : static_cast<std::uint32_t>(items.size());
+        aligned.resize((aligned.size() + alignment - 1) / alignment * alignment, kEmptyChild);
+        *leaves[k].second = static_cast<std::uint32_t>(aligned.size());
+        aligned.insert(aligned.end(), items.begin() + first, items.begin() + end);
+    }
+    aligned.resize((aligned.size() + alignment - 1) / alignment * alignment, kEmptyChild);
+    items = std::move(aligned);
+}
+
 } // namespace
 
-WideBvh::WideBvh(std::span<const Bounds> item_bounds) {
+WideBvh::WideBvh(std::span<const Bounds> item_bounds, std::uint32_t leaf_alignment) {
     if (item_bounds.empty()) return;
     const BinaryBvh tree(item_bounds);
     items_ = tree.items();
@@ -85,6 +109,7 @@ WideBvh::WideBvh(std::span<const Bounds> item_bounds) {
         set_lane(nodes_[0], 0, root.bounds, root.first, root.count);
     else
         collapse(tree, 0, 0, nodes_);
+    if (leaf_alignment > 1) align_leaves(nodes_, items_, leaf_alignment);
 }
 
 WideBvh WideBvh::refitted(std::span<const Bounds> items) const {

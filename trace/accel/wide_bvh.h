@@ -157,13 +157,16 @@ struct PacketRays {
 class WideBvh {
   public:
     WideBvh() = default;
-    explicit WideBvh(std::span<const Bounds> items);
+    // `leaf_alignment`: every leaf's first slot a multiple of it, the slots between leaves
+    // padding (kEmptyChild in items()), so that a user may keep its items in blocks of that many
+    // side by side (a mesh's triangles, four to a SIMD block: trace/shapes/mesh.h).
+    explicit WideBvh(std::span<const Bounds> items, std::uint32_t leaf_alignment = 1);
 
     // This tree over new boxes of the same items (BinaryBvh::refitted's contract).
     WideBvh refitted(std::span<const Bounds> items) const;
 
     const std::vector<WideBvhNode>& nodes() const { return nodes_; }
-    // Item slot → item: leaves name ranges of slots.
+    // Item slot → item: leaves name ranges of slots; padding slots hold kEmptyChild.
     const std::vector<std::uint32_t>& items() const { return items_; }
     std::size_t memory_bytes() const {
         return nodes_.size() * sizeof(WideBvhNode) + items_.size() * 4;
@@ -172,8 +175,13 @@ class WideBvh {
 
     // The leaves the ray may meet, nearest box first: visit(first_slot, end_slot, t_max) may
     // shorten t_max and returns true to stop. Counts one node per wide node whose boxes it tests.
-    template <class Counters, class VisitLeaf>
-    void traverse_leaves(const Ray& ray, Real& t_max, Counters& counters, VisitLeaf&& visit) const {
+    // prefetch(first_slot) is told of every leaf the ray meets as soon as its box is tested, so
+    // that the user's data for it (a mesh's triangle block) is fetched while nearer ones are
+    // visited: the loads of a node's leaves overlap instead of following one another.
+    template <class Counters, class VisitLeaf, class PrefetchLeaf = void (*)(std::uint32_t)>
+    void traverse_leaves(
+        const Ray& ray, Real& t_max, Counters& counters, VisitLeaf&& visit,
+        PrefetchLeaf&& prefetch_leaf = [](std::uint32_t) {}) const {
         if (nodes_.empty()) return;
         const WideRay wide(ray);
         struct Entry {
@@ -200,10 +208,14 @@ class WideBvh {
                 hit[at] = e;
             }
             for (int k = hits - 1; k > 0; --k) {
-                // A waiting inner child is fetched while the nearer ones are traversed.
-                if (hit[k].count == 0) prefetch(hit[k].child);
+                // A waiting child is fetched while the nearer ones are traversed.
+                if (hit[k].count == 0)
+                    prefetch(hit[k].child);
+                else
+                    prefetch_leaf(hit[k].child);
                 stack[top++] = hit[k];
             }
+            if (hits > 0 && hit[0].count > 0) prefetch_leaf(hit[0].child);
             Entry next;
             if (hits > 0) {
                 next = hit[0];

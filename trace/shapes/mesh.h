@@ -13,6 +13,17 @@
 namespace glint {
 inline namespace GLINT_PRECISION {
 
+// Four triangles side by side, structure of arrays: corner k's coordinate along axis a of the
+// triangle in lane i is p[k][a][i]. 144 bytes in float: one triangle test of four lanes loads
+// nine vectors and nothing else (no index, no vertex lookup).
+inline constexpr std::uint32_t kTriangleLanes = 4;
+struct alignas(16) TriangleBlock {
+    Real p[3][3][kTriangleLanes];
+    Vec3 corner(int k, std::uint32_t lane) const {
+        return {p[k][0][lane], p[k][1][lane], p[k][2][lane]};
+    }
+};
+
 // A scene's triangle mesh prepared for tracing (see prepare_mesh).
 struct Mesh {
     std::vector<Vec3> vertices;
@@ -20,12 +31,16 @@ struct Mesh {
     std::vector<Vec3> normals;         // per vertex, or empty (flat shading)
     std::vector<glm::vec2> uvs;        // texture coordinates per vertex, or empty
     Bounds bounds;                     // of the vertices, object space
-    WideBvh bvh;                       // over the triangles, object space
-    // The three corners of each triangle side by side: one load per triangle instead of an
-    // index and three scattered vertices. In the BVH's slot order where there is one (slot s
-    // holds triangle bvh.items()[s]), so that a leaf's triangles are contiguous; else in
-    // triangle order.
-    std::vector<std::array<Vec3, 3>> corners;
+    // Over the triangles, object space; every leaf starts at a multiple of kTriangleLanes, so
+    // that its triangles fill whole blocks (a leaf of up to four is one block).
+    WideBvh bvh;
+    // The corners of the triangle in slot s in blocks[s / 4], lane s % 4: in the BVH's slot
+    // order where there is one (slot s holds triangle bvh.items()[s]; padding slots hold a
+    // degenerate triangle that no leaf names), else in triangle order.
+    std::vector<TriangleBlock> blocks;
+    Vec3 corner(std::uint32_t slot, int k) const {
+        return blocks[slot / kTriangleLanes].corner(k, slot % kTriangleLanes);
+    }
 };
 
 // Each triangle's box, object space.
@@ -88,9 +103,63 @@ inline TriangleHit intersect_triangle(Vec3 p0, Vec3 p1, Vec3 p2, const Ray& ray)
     return intersect_triangle(p0, p1, p2, WatertightRay(ray));
 }
 
+// Up to four triangles of a block (lanes [0, lanes)) against one ray: hits[i] =
+// intersect_triangle(the corners of lane i, ray), bit for bit. With SSE in float, the test's
+// operations in the same order lane by lane, four lanes an instruction; a lane whose edge
+// functions meet a zero (the ray through an edge or a vertex in float) is answered by the
+// single test, which decides it in double. Elsewhere (double precision), one lane at a time.
+inline void intersect_triangles(const TriangleBlock& block, std::uint32_t lanes,
+                                const WatertightRay& r, TriangleHit (&hits)[kTriangleLanes]) {
+#if GLINT_WIDE_BVH_SSE
+    const int axis[3] = {r.kx, r.ky, r.kz};
+    __m128 x[3], y[3], z[3]; // corner k relative to the origin, sheared: x, y; and along kz
+    const __m128 sx = _mm_set1_ps(r.sx), sy = _mm_set1_ps(r.sy);
+    for (int k = 0; k < 3; ++k) {
+        __m128 d[3];
+        for (int a = 0; a < 3; ++a)
+            d[a] = _mm_sub_ps(_mm_load_ps(block.p[k][axis[a]]), _mm_set1_ps(r.origin[axis[a]]));
+        x[k] = _mm_sub_ps(d[0], _mm_mul_ps(sx, d[2]));
+        y[k] = _mm_sub_ps(d[1], _mm_mul_ps(sy, d[2]));
+        z[k] = d[2];
+    }
+    // u = cx·by − cy·bx, v = ax·cy − ay·cx, w = bx·ay − by·ax (corners a, b, c = 0, 1, 2).
+    const __m128 u = _mm_sub_ps(_mm_mul_ps(x[2], y[1]), _mm_mul_ps(y[2], x[1]));
+    const __m128 v = _mm_sub_ps(_mm_mul_ps(x[0], y[2]), _mm_mul_ps(y[0], x[2]));
+    const __m128 w = _mm_sub_ps(_mm_mul_ps(x[1], y[0]), _mm_mul_ps(y[1], x[0]));
+    const __m128 zero = _mm_setzero_ps();
+    const __m128 on_edge =
+        _mm_or_ps(_mm_or_ps(_mm_cmpeq_ps(u, zero), _mm_cmpeq_ps(v, zero)), _mm_cmpeq_ps(w, zero));
+    const __m128 negative =
+        _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(u, zero), _mm_cmplt_ps(v, zero)), _mm_cmplt_ps(w, zero));
+    const __m128 positive =
+        _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(u, zero), _mm_cmpgt_ps(v, zero)), _mm_cmpgt_ps(w, zero));
+    const __m128 det = _mm_add_ps(_mm_add_ps(u, v), w);
+    const __m128 missed = _mm_or_ps(_mm_and_ps(negative, positive), _mm_cmpeq_ps(det, zero));
+    const __m128 sz = _mm_set1_ps(r.sz);
+    const __m128 t = _mm_div_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(u, sz), z[0]),
+                                                      _mm_mul_ps(_mm_mul_ps(v, sz), z[1])),
+                                           _mm_mul_ps(_mm_mul_ps(w, sz), z[2])),
+                                det);
+    // A missed lane is TriangleHit{}: t = ∞, u = v = 0.
+    alignas(16) Real t_out[4], b1[4], b2[4];
+    _mm_store_ps(t_out,
+                 _mm_or_ps(_mm_andnot_ps(missed, t), _mm_and_ps(missed, _mm_set1_ps(kInfinity))));
+    _mm_store_ps(b1, _mm_andnot_ps(missed, _mm_div_ps(v, det)));
+    _mm_store_ps(b2, _mm_andnot_ps(missed, _mm_div_ps(w, det)));
+    const unsigned edges = static_cast<unsigned>(_mm_movemask_ps(on_edge));
+    for (std::uint32_t i = 0; i < lanes; ++i)
+        hits[i] = (edges >> i) & 1 ? intersect_triangle(block.corner(0, i), block.corner(1, i),
+                                                        block.corner(2, i), r)
+                                   : TriangleHit{t_out[i], b1[i], b2[i]};
+#else
+    for (std::uint32_t i = 0; i < lanes; ++i)
+        hits[i] = intersect_triangle(block.corner(0, i), block.corner(1, i), block.corner(2, i), r);
+#endif
+}
+
 // Builds what intersect_mesh reads: the vertices and their bounds, above 8 triangles a BVH over
 // them (the bottom level of a two-level structure: to the top level a mesh is one object), and
-// every triangle's corners in the order the BVH reads them.
+// every triangle's corners in blocks in the order the BVH reads them.
 inline Mesh prepare_mesh(const TriangleMesh& given) {
     Mesh mesh;
     mesh.triangles = given.triangles;
@@ -101,25 +170,50 @@ inline Mesh prepare_mesh(const TriangleMesh& given) {
     }
     for (const glm::vec3& n : given.normals) mesh.normals.push_back(Vec3(n));
     mesh.uvs = given.uvs;
-    if (mesh.triangles.size() > 8) mesh.bvh = WideBvh(triangle_bounds(mesh));
-    mesh.corners.reserve(mesh.triangles.size());
-    for (std::uint32_t slot = 0; slot < mesh.triangles.size(); ++slot) {
-        const glm::uvec3 t =
-            mesh.triangles[mesh.bvh.nodes().empty() ? slot : mesh.bvh.items()[slot]];
-        mesh.corners.push_back({mesh.vertices[t.x], mesh.vertices[t.y], mesh.vertices[t.z]});
+    if (mesh.triangles.size() > 8) mesh.bvh = WideBvh(triangle_bounds(mesh), kTriangleLanes);
+    const bool tree = !mesh.bvh.nodes().empty();
+    const std::size_t slots = tree ? mesh.bvh.items().size() : mesh.triangles.size();
+    mesh.blocks.assign((slots + kTriangleLanes - 1) / kTriangleLanes, TriangleBlock{});
+    for (std::uint32_t slot = 0; slot < slots; ++slot) {
+        const std::uint32_t triangle = tree ? mesh.bvh.items()[slot] : slot;
+        if (triangle == kEmptyChild) continue; // padding: all corners 0
+        const glm::uvec3 t = mesh.triangles[triangle];
+        const Vec3 corners[3] = {mesh.vertices[t.x], mesh.vertices[t.y], mesh.vertices[t.z]};
+        TriangleBlock& block = mesh.blocks[slot / kTriangleLanes];
+        for (int k = 0; k < 3; ++k)
+            for (int a = 0; a < 3; ++a) block.p[k][a][slot % kTriangleLanes] = corners[k][a];
     }
     return mesh;
 }
 
-// Triangle `triangle` (its corners in slot `slot`) for one ray: replaces `best` when it is hit
-// in (0, t_max) nearer, or as near with a lower triangle index. The one test of both
-// intersect_mesh and intersect_mesh_packet.
-inline void consider_triangle(const Mesh& mesh, std::uint32_t slot, std::uint32_t triangle,
-                              const WatertightRay& ray, Real t_max, ShapeHit& best) {
-    const std::array<Vec3, 3>& c = mesh.corners[slot];
-    const TriangleHit h = intersect_triangle(c[0], c[1], c[2], ray);
-    if (h.t > 0 && h.t < t_max && (h.t < best.t || (h.t == best.t && triangle < best.part)))
-        best = {h.t, triangle, h.u, h.v};
+// Asks for the first block of the leaf at slot `first` (its 144 bytes) to be fetched.
+inline void prefetch_block(const Mesh& mesh, std::uint32_t first) {
+    const char* p = reinterpret_cast<const char*>(&mesh.blocks[first / kTriangleLanes]);
+    for (std::size_t line = 0; line < sizeof(TriangleBlock); line += 64)
+        __builtin_prefetch(p + line);
+    __builtin_prefetch(p + sizeof(TriangleBlock) - 1);
+}
+
+// The triangles in slots [begin, end) (begin a multiple of kTriangleLanes) for one ray, a block
+// at a time: a triangle replaces `best` when it is hit in (0, t_max) nearer, or as near with a
+// lower triangle index (`triangle(slot)`). The one test of intersect_mesh and
+// intersect_mesh_packet.
+template <class Counters, class TriangleOf>
+void consider_triangles(const Mesh& mesh, std::uint32_t begin, std::uint32_t end,
+                        const TriangleOf& triangle_of, const WatertightRay& ray, Real t_max,
+                        ShapeHit& best, Counters& counters) {
+    for (std::uint32_t first = begin; first < end; first += kTriangleLanes) {
+        const std::uint32_t lanes = std::min(kTriangleLanes, end - first);
+        TriangleHit hits[kTriangleLanes];
+        intersect_triangles(mesh.blocks[first / kTriangleLanes], lanes, ray, hits);
+        for (std::uint32_t i = 0; i < lanes; ++i) {
+            counters.primitive();
+            const TriangleHit& h = hits[i];
+            const std::uint32_t triangle = triangle_of(first + i);
+            if (h.t > 0 && h.t < t_max && (h.t < best.t || (h.t == best.t && triangle < best.part)))
+                best = {h.t, triangle, h.u, h.v};
+        }
+    }
 }
 
 // The nearest triangle below t_max: through the mesh's own BVH (the bottom level of a two-level
@@ -133,20 +227,21 @@ ShapeHit intersect_mesh(const Mesh& mesh, const Ray& ray, Real t_max, Counters& 
     const WatertightRay prepared(ray); // once per ray, not per triangle
     Real box_limit = loose(t_max);
     if (!mesh.bvh.nodes().empty()) {
-        const std::vector<std::uint32_t>& triangles = mesh.bvh.items();
+        const std::uint32_t* triangles = mesh.bvh.items().data();
+        const auto triangle_of = [triangles](std::uint32_t slot) { return triangles[slot]; };
         mesh.bvh.traverse_leaves(
-            ray, box_limit, counters, [&](std::uint32_t begin, std::uint32_t end, Real& limit) {
-                for (std::uint32_t slot = begin; slot < end; ++slot) {
-                    counters.primitive();
-                    consider_triangle(mesh, slot, triangles[slot], prepared, t_max, best);
-                }
+            ray, box_limit, counters,
+            [&](std::uint32_t begin, std::uint32_t end, Real& limit) {
+                consider_triangles(mesh, begin, end, triangle_of, prepared, t_max, best, counters);
                 limit = loose(std::min(best.t, t_max));
                 return false;
-            });
+            },
+            [&](std::uint32_t first) { prefetch_block(mesh, first); });
     } else {
         if (!SlabRay(ray).hits(mesh.bounds, box_limit)) return {};
-        for (std::uint32_t i = 0; i < mesh.triangles.size(); ++i)
-            counters.primitive(), consider_triangle(mesh, i, i, prepared, t_max, best);
+        const auto triangle_of = [](std::uint32_t slot) { return slot; };
+        consider_triangles(mesh, 0, static_cast<std::uint32_t>(mesh.triangles.size()), triangle_of,
+                           prepared, t_max, best, counters);
     }
     return best;
 }
@@ -166,15 +261,13 @@ void intersect_mesh_packet(const Mesh& mesh, const Ray* rays, int count, const R
     std::optional<WatertightRay> prepared[kMaxPacket]; // made on a ray's first leaf
     Real box_limit[kMaxPacket];
     for (int r = 0; r < count; ++r) best[r] = {}, box_limit[r] = loose(t_max[r]);
-    const std::vector<std::uint32_t>& triangles = mesh.bvh.items();
+    const std::uint32_t* triangles = mesh.bvh.items().data();
+    const auto triangle_of = [triangles](std::uint32_t slot) { return triangles[slot]; };
     mesh.bvh.traverse_packet(rays, count, box_limit, counters,
                              [&](int r, std::uint32_t begin, std::uint32_t end, Real& limit) {
                                  if (!prepared[r]) prepared[r].emplace(rays[r]);
-                                 for (std::uint32_t slot = begin; slot < end; ++slot) {
-                                     counters.primitive();
-                                     consider_triangle(mesh, slot, triangles[slot], *prepared[r],
-                                                       t_max[r], best[r]);
-                                 }
+                                 consider_triangles(mesh, begin, end, triangle_of, *prepared[r],
+                                                    t_max[r], best[r], counters);
                                  limit = loose(std::min(best[r].t, t_max[r]));
                                  return false;
                              });
