@@ -2,6 +2,7 @@
 #include "app/commands.h"
 
 #include "raster/gl_context.h"
+#include "trace/kernel.h"
 
 #include <tbb/task_arena.h>
 #include <tbb/version.h>
@@ -18,6 +19,12 @@ Command add_info_command(CLI::App& app) {
                 std::printf("glint %s (%s build)\n", GLINT_VERSION, GLINT_BUILD_TYPE);
                 std::printf("threads: %d (oneTBB %d.%d)\n", tbb::this_task_arena::max_concurrency(),
                             TBB_VERSION_MAJOR, TBB_VERSION_MINOR);
+                std::string kernels;
+                for (const Kernel k : available_kernels())
+                    kernels += (kernels.empty() ? "" : ", ") + std::string(name_of(k));
+                std::printf("kernel: %s (BVH box tests; this processor has %s; GLINT_KERNEL "
+                            "chooses)\n",
+                            std::string(name_of(active_kernel())).c_str(), kernels.c_str());
                 for (const GlBackend backend : {GlBackend::osmesa, GlBackend::egl}) {
                     try {
                         const auto context = make_context(backend);

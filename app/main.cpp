@@ -2,7 +2,9 @@
 // 2 usage or bad input.
 #include "app/commands.h"
 #include "app/distributed.h"
+#include "trace/kernel.h"
 
+#include <cstdlib>
 #include <iostream>
 
 namespace {
@@ -22,6 +24,17 @@ int run_command(const glint::Cli& cli) {
     return command.run();
 }
 
+// GLINT_KERNEL, when set, must name a kernel this processor has (trace/kernel.h).
+bool kernel_choice_stands() {
+    const char* requested = std::getenv("GLINT_KERNEL");
+    if (!requested) return true;
+    const glint::KernelChoice choice = glint::choose_kernel(requested);
+    if (choice.problem.empty()) return true;
+    if (glint::rank() == 0)
+        std::cerr << "glint: error: GLINT_KERNEL=" << requested << " " << choice.problem << "\n";
+    return false;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -30,7 +43,7 @@ int main(int argc, char** argv) {
     int code = 0;
     try {
         cli.app.parse(argc, argv);
-        code = run_command(cli);
+        code = kernel_choice_stands() ? run_command(cli) : 2;
     } catch (const CLI::ParseError& e) {
         if (e.get_exit_code() == 0) {
             code = glint::rank() == 0 ? cli.app.exit(e) : 0; // --help, --version

@@ -8,6 +8,7 @@
 #include "trace/cutoff.h"
 #include "trace/exr.h"
 #include "trace/image.h"
+#include "trace/kernel.h"
 #include "trace/stopwatch.h"
 
 #include <nlohmann/json.hpp>
@@ -100,6 +101,7 @@ nlohmann::ordered_json stats_json(const RenderReport& r) {
         {"height", scene.camera.height},
         {"mode", r.args.frame.mode},
         {"threads", r.threads},
+        {"kernel", name_of(active_kernel())},
         {"max_depth", scene.render.max_depth},
         {"min_reflectivity", scene.render.min_reflectivity},
         {"samples", scene.render.samples},

@@ -5,6 +5,7 @@
 //
 //   glint bench                                   (everything; a few minutes)
 //   glint bench --benchmark_filter='^(Glint|Embree)'   (Google Benchmark's flags pass through)
+#include "trace/kernel.h"
 #include "trace/render.h"
 #include "trace/scene_loader.h"
 #include "trace/shading.h"
@@ -284,7 +285,8 @@ void label(benchmark::State& state, const PeerScene& peer, std::int64_t rays) {
     state.SetLabel(std::string(state.range(0) == 0 ? "terrain" : "balls-4") +
                    (state.range(1) ? ", all threads" : ", 1 thread") + ", " +
                    std::to_string(peer.triangles.size()) + " triangles, " +
-                   std::to_string(peer.spheres.size()) + " spheres");
+                   std::to_string(peer.spheres.size()) + " spheres, glint kernel " +
+                   std::string(name_of(active_kernel())));
 }
 
 // The rays of `rays` one at a time (closest hit).

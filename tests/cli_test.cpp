@@ -49,6 +49,30 @@ TEST(Cli, RenderWritesThePngAndReportsPathTimeAndRayCounts) {
     EXPECT_TRUE(r.err.empty()) << "no progress output when stderr is not a terminal: " << r.err;
 }
 
+// GLINT_KERNEL chooses the SIMD kernel (trace/kernel.h): --stats and `glint info` name the one
+// that ran, the portable one forced renders the same bytes, and a name that is not a kernel is
+// refused before any work, exit 2.
+TEST(Cli, TheKernelIsNamedForcedByGlintKernelAndCheckedAtStartUp) {
+    const fs::path dir = fresh_dir();
+    const std::string render =
+        "render '" GLINT_SOURCE_DIR "/scenes/default.json' --size 64x48 --mode ray --stats ";
+    const Outcome widest = glint(dir, render + "w.json -o w.png");
+    ASSERT_EQ(widest.exit_code, 0) << widest.err;
+    const std::string kernel = nlohmann::json::parse(slurp(dir / "w.json"))["kernel"];
+    EXPECT_TRUE(kernel == "sse" || kernel == "avx2") << kernel;
+    const Outcome portable = glint(dir, render + "p.json -o p.png", "env GLINT_KERNEL=sse");
+    ASSERT_EQ(portable.exit_code, 0) << portable.err;
+    EXPECT_EQ(nlohmann::json::parse(slurp(dir / "p.json"))["kernel"], "sse");
+    EXPECT_EQ(slurp(dir / "w.png"), slurp(dir / "p.png"));
+    const Outcome info = glint(dir, "info", "env GLINT_KERNEL=sse");
+    EXPECT_NE(info.out.find("kernel: sse ("), std::string::npos) << info.out;
+    const Outcome bad = glint(dir, render + "b.json -o b.png", "env GLINT_KERNEL=avx9");
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_NE(bad.err.find("GLINT_KERNEL=avx9 is not a kernel (sse, avx2)"), std::string::npos)
+        << bad.err;
+    EXPECT_FALSE(fs::exists(dir / "b.png"));
+}
+
 // No display: the preview says so and names the two ways on, and opens nothing.
 TEST(Cli, PreviewWithoutADisplayNamesGlintRenderAndXvfbRun) {
     const fs::path dir = fresh_dir();

@@ -4,6 +4,7 @@
 // (repeated corners, collinear, zero area), tiny and huge coordinates, and blocks of every fill.
 #include "test_scenes.h"
 
+#include "trace/kernel.h"
 #include "trace/shapes/mesh.h"
 
 #include <gtest/gtest.h>
@@ -130,6 +131,115 @@ TEST(Kernel, TriangleBlocksAgreeExactlyWithTheSingleTest) {
     }
     EXPECT_GT(hits, tests / 5) << "too few hits to mean much";
     EXPECT_GT(edge_cases, tests / 100) << "too few rays through edges and corners";
+}
+
+// Every kernel this processor has (and the portable one, SSE, always) tests an eight-wide
+// node's boxes exactly as SlabRay::clip's arithmetic does lane by lane: the same lanes met and
+// the same entry distances, bit for bit, for single rays (WideRay::enter) and packets of every
+// fill (PacketRays::enter). Boxes empty, flat, touching the ray's origin, huge; rays
+// axis-parallel (reciprocals ±1e30), from inside, with limits 0, finite and infinite.
+TEST(Kernel, EveryKernelTestsNodeBoxesExactlyAsTheScalarSlabTest) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(-1, 1);
+    const Kernel before = active_kernel();
+    const std::vector<Kernel> kernels = available_kernels();
+    ASSERT_EQ(kernels.front(), Kernel::sse);
+    const auto random_node = [&] {
+        WideBvhNode n{};
+        for (int k = 0; k < kBvhWidth; ++k) {
+            Vec3 lo(u(rng), u(rng), u(rng)), hi = lo + Vec3(u(rng), u(rng), u(rng)) + 1.0f;
+            switch (rng() % 6) {
+            case 0: // an empty lane
+                lo = Vec3(kInfinity), hi = Vec3(-kInfinity);
+                break;
+            case 1: // flat along one axis
+                hi[rng() % 3] = lo[rng() % 3];
+                break;
+            case 2: // huge
+                lo *= 1e30f, hi *= 1e30f;
+                break;
+            default:
+                break;
+            }
+            n.child[k] = lo.x == kInfinity ? kEmptyChild : 0;
+            for (int a = 0; a < 3; ++a)
+                n.box[a][0][k] = lo[a],
+                n.box[a][1][k] = n.child[k] ? hi[a] : std::max(lo[a], hi[a]);
+        }
+        return n;
+    };
+    const auto random_ray = [&](const WideBvhNode& n) {
+        Vec3 origin(2 * u(rng), 2 * u(rng), 2 * u(rng)), direction(u(rng), u(rng), u(rng));
+        const int k = static_cast<int>(rng() % kBvhWidth);
+        if (n.child[k] != kEmptyChild && rng() % 3 == 0) // towards a lane's box
+            for (int a = 0; a < 3; ++a)
+                direction[a] = (n.box[a][0][k] + n.box[a][1][k]) / 2 - origin[a] + 0.3f * u(rng);
+        else if (n.child[k] != kEmptyChild && rng() % 2) // through a corner: enters as it leaves
+            for (int a = 0; a < 3; ++a) direction[a] = n.box[a][rng() % 2][k] - origin[a];
+        if (rng() % 4 == 0) direction[rng() % 3] = 0;
+        if (rng() % 8 == 0) direction = Vec3(0), direction[rng() % 3] = rng() % 2 ? 1.0f : -1.0f;
+        if (direction == Vec3(0.0f)) direction = {0, 1, 0};
+        return Ray{origin, direction};
+    };
+    const Real limits[] = {0, 0.5f, 3, 1e30f, kInfinity};
+    std::uint64_t met = 0, lanes = 0;
+    const int nodes = testing::kUnderSanitizers ? 20000 : 200000;
+    for (int i = 0; i < nodes; ++i) {
+        const WideBvhNode n = random_node();
+        Ray rays[kMaxPacket];
+        Real t_max[kMaxPacket];
+        const int count = 1 + static_cast<int>(rng() % kMaxPacket);
+        for (int r = 0; r < count; ++r) rays[r] = random_ray(n), t_max[r] = limits[rng() % 5];
+        // The scalar reference: SlabRay::clip's operations, per ray and lane.
+        unsigned expected_mask[kMaxPacket] = {};
+        Real expected_near[kMaxPacket][kBvhWidth];
+        for (int r = 0; r < count; ++r) {
+            const SlabRay slab(rays[r]);
+            for (int k = 0; k < kBvhWidth; ++k) {
+                Real t_in = 0, t_out = kInfinity;
+                for (int a = 0; a < 3; ++a) {
+                    const Real t0 = (n.box[a][0][k] - slab.origin[a]) * slab.inverse_direction[a];
+                    const Real t1 = (n.box[a][1][k] - slab.origin[a]) * slab.inverse_direction[a];
+                    t_in = std::max(t_in, std::min(t0, t1));
+                    t_out = std::min(t_out, std::max(t0, t1));
+                }
+                expected_near[r][k] = t_in;
+                // An empty lane (lo = +∞, hi = −∞) is never met (traverse_packet skips it).
+                if (n.child[k] != kEmptyChild && t_in <= std::min(t_out * kSlabWiden, t_max[r]))
+                    expected_mask[r] |= 1u << k;
+            }
+            met += __builtin_popcount(expected_mask[r]), lanes += kBvhWidth;
+        }
+        for (const Kernel kernel : kernels) {
+            use_kernel(kernel);
+            for (int r = 0; r < count; ++r) {
+                const WideRay wide(rays[r]);
+                Real t_near[kBvhWidth];
+                const unsigned mask = wide.enter(n, t_max[r], t_near);
+                ASSERT_EQ(mask, expected_mask[r]) << name_of(kernel) << " node " << i;
+                for (int k = 0; k < kBvhWidth; ++k) {
+                    if ((mask >> k) & 1) {
+                        ASSERT_EQ(t_near[k], expected_near[r][k]) << name_of(kernel);
+                    }
+                }
+            }
+            const PacketRays packet(rays, count, t_max);
+            const PacketRays::Mask active = packet.all & static_cast<PacketRays::Mask>(rng());
+            for (int k = 0; k < kBvhWidth; ++k) {
+                if (n.child[k] == kEmptyChild) continue;
+                Real t = kInfinity, expected_t = kInfinity;
+                PacketRays::Mask expected = 0;
+                for (int r = 0; r < count; ++r)
+                    if ((active >> r) & 1 && (expected_mask[r] >> k) & 1)
+                        expected |= 1u << r, expected_t = std::min(expected_t, expected_near[r][k]);
+                ASSERT_EQ(packet.enter(n, k, active, t), expected) << name_of(kernel);
+                ASSERT_EQ(t, expected_t) << name_of(kernel);
+            }
+        }
+    }
+    use_kernel(before);
+    EXPECT_GT(met, lanes / 20) << "too few boxes met to mean much"; // about 7% are
+    EXPECT_LT(met, lanes * 9 / 10) << "too few boxes missed to mean much";
 }
 
 } // namespace

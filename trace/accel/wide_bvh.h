@@ -1,7 +1,8 @@
-// Four-wide bounding volume hierarchy: the binary SAH tree (binary_bvh.h) collapsed so that each
-// node holds the boxes of up to four children side by side, tested together with one SIMD slab
-// test (SSE in float, which every x86-64 processor has; the same arithmetic lane by lane in
-// double). Leaves are the binary tree's (at most 8 items): their items are contiguous, so that a
+// Eight-wide bounding volume hierarchy: the binary SAH tree (binary_bvh.h) collapsed so that
+// each node holds the boxes of up to eight children side by side, tested together by one SIMD
+// slab test: AVX2 where the processor has it, else two SSE halves (every x86-64 processor has
+// SSE), the kernel chosen at start-up (trace/kernel.h); the same arithmetic lane by lane in
+// double. Leaves are the binary tree's (at most 8 items): their items are contiguous, so that a
 // user may keep its hot data (a mesh's triangles) in leaf order and read it by slot
 // (traverse_leaves). Packets of up to kMaxPacket rays traverse it together (traverse_packet).
 #pragma once
@@ -9,6 +10,7 @@
 #include "trace/accel/binary_bvh.h"
 #include "trace/accel/counters.h"
 #include "trace/bounds.h"
+#include "trace/kernel.h"
 
 #include <cassert>
 #include <span>
@@ -24,11 +26,11 @@
 namespace glint {
 inline namespace GLINT_PRECISION {
 
-inline constexpr int kBvhWidth = 4;
+inline constexpr int kBvhWidth = 8;
 inline constexpr std::uint32_t kEmptyChild = ~0u;
 inline constexpr int kMaxPacket = 16; // rays a packet traversal takes at once
 
-// 128 bytes in float (two cache lines): the six planes of four boxes, then the children.
+// 256 bytes in float (four cache lines): the six planes of eight boxes, then the children.
 struct alignas(64) WideBvhNode {
     // box[axis][0] holds the children's low ends along axis, box[axis][1] their high ends, one
     // lane per child. An empty lane is lo = +inf, hi = −inf: a ray enters it at +inf and leaves
@@ -38,16 +40,31 @@ struct alignas(64) WideBvhNode {
     std::uint8_t count[kBvhWidth];  // leaf: its number of items; inner child or empty lane: 0
 };
 
+// SlabRay::clip's enlargement of the far end.
+inline constexpr Real kSlabWiden = 1.0_r + 2.0_r * gamma(3);
+
+struct WideRay;
+struct PacketRays;
+#if GLINT_WIDE_BVH_SSE
+// The AVX2 kernel's box tests (wide_bvh.cpp, compiled for AVX2 alone): WideRay::enter and
+// PacketRays::enter, the same operations eight lanes an instruction.
+unsigned enter_avx2(const WideRay& ray, const WideBvhNode& n, Real t_max,
+                    Real (&t_near)[kBvhWidth]);
+std::uint32_t enter_avx2(const PacketRays& packet, const WideBvhNode& n, int k,
+                         std::uint32_t active, Real& t);
+#endif
+
 // A ray prepared for wide nodes: SlabRay's reciprocals (±1e30 for axis-parallel directions),
 // and per axis which plane it enters by (the low one where the direction is positive), so that
-// each axis costs two subtractions and two multiplications for all four children, no min/max.
+// each axis costs two subtractions and two multiplications for all children, no min/max.
 // For boxes with lo ≤ hi this is SlabRay::clip exactly, enlargement of the far end included.
 struct WideRay {
     Vec3 origin;
     Vec3 inverse_direction;
     int near[3]; // 0: the low plane is entered first; 1: the high one
+    bool avx2;   // the kernel in use (active_kernel) when the ray was made
 
-    explicit WideRay(const Ray& ray) {
+    explicit WideRay(const Ray& ray) : avx2(active_kernel() == Kernel::avx2) {
         const SlabRay slab(ray);
         origin = slab.origin, inverse_direction = slab.inverse_direction;
         for (int a = 0; a < 3; ++a) near[a] = std::signbit(inverse_direction[a]) ? 1 : 0;
@@ -56,19 +73,25 @@ struct WideRay {
     // Bit k set when the ray meets child k's box within [0, t_max]; t_near[k] where it enters.
     [[gnu::always_inline]] unsigned enter(const WideBvhNode& n, Real t_max,
                                           Real (&t_near)[kBvhWidth]) const {
-        constexpr Real widen = 1.0_r + 2.0_r * gamma(3); // SlabRay::clip's enlargement
 #if GLINT_WIDE_BVH_SSE
-        __m128 t_in = _mm_setzero_ps(), t_out = _mm_set1_ps(kInfinity);
-        for (int a = 0; a < 3; ++a) {
-            const __m128 o = _mm_set1_ps(origin[a]), inv = _mm_set1_ps(inverse_direction[a]);
-            const __m128 in = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.box[a][near[a]]), o), inv);
-            const __m128 out = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.box[a][1 - near[a]]), o), inv);
-            t_in = _mm_max_ps(t_in, in);
-            t_out = _mm_min_ps(t_out, out);
+        if (avx2) return enter_avx2(*this, n, t_max, t_near);
+        unsigned mask = 0;
+        for (int h = 0; h < kBvhWidth; h += 4) {
+            __m128 t_in = _mm_setzero_ps(), t_out = _mm_set1_ps(kInfinity);
+            for (int a = 0; a < 3; ++a) {
+                const __m128 o = _mm_set1_ps(origin[a]), inv = _mm_set1_ps(inverse_direction[a]);
+                const __m128 in =
+                    _mm_mul_ps(_mm_sub_ps(_mm_load_ps(&n.box[a][near[a]][h]), o), inv);
+                const __m128 out =
+                    _mm_mul_ps(_mm_sub_ps(_mm_load_ps(&n.box[a][1 - near[a]][h]), o), inv);
+                t_in = _mm_max_ps(t_in, in);
+                t_out = _mm_min_ps(t_out, out);
+            }
+            t_out = _mm_min_ps(_mm_mul_ps(t_out, _mm_set1_ps(kSlabWiden)), _mm_set1_ps(t_max));
+            _mm_storeu_ps(&t_near[h], t_in);
+            mask |= static_cast<unsigned>(_mm_movemask_ps(_mm_cmple_ps(t_in, t_out))) << h;
         }
-        t_out = _mm_min_ps(_mm_mul_ps(t_out, _mm_set1_ps(widen)), _mm_set1_ps(t_max));
-        _mm_storeu_ps(t_near, t_in);
-        return static_cast<unsigned>(_mm_movemask_ps(_mm_cmple_ps(t_in, t_out)));
+        return mask;
 #else
         unsigned mask = 0;
         for (int k = 0; k < kBvhWidth; ++k) {
@@ -78,7 +101,7 @@ struct WideRay {
                 const Real out = (n.box[a][1 - near[a]][k] - origin[a]) * inverse_direction[a];
                 t_in = std::max(t_in, in), t_out = std::min(t_out, out);
             }
-            t_out = std::min(t_out * widen, t_max);
+            t_out = std::min(t_out * kSlabWiden, t_max);
             t_near[k] = t_in;
             mask |= unsigned(t_in <= t_out) << k;
         }
@@ -88,19 +111,21 @@ struct WideRay {
 };
 
 // Up to kMaxPacket rays prepared for wide nodes, one lane per ray (structure of arrays), so that
-// a child's box is tested against four rays per SSE instruction. Lanes beyond the packet have
-// t_max = −inf: no box is entered before it.
+// a child's box is tested against four rays per SSE instruction (eight with AVX2). Lanes beyond
+// the packet have t_max = −inf: no box is entered before it.
 struct PacketRays {
     using Mask = std::uint32_t; // bit r: ray r
-    static_assert(kMaxPacket <= 32 && kMaxPacket % 4 == 0);
+    static_assert(kMaxPacket <= 32 && kMaxPacket % 8 == 0);
 
-    alignas(16) Real origin[3][kMaxPacket];
-    alignas(16) Real inverse_direction[3][kMaxPacket];
-    alignas(16) Real t_max[kMaxPacket];
+    alignas(32) Real origin[3][kMaxPacket];
+    alignas(32) Real inverse_direction[3][kMaxPacket];
+    alignas(32) Real t_max[kMaxPacket];
     Mask all;
+    bool avx2; // the kernel in use (active_kernel) when the packet was made
 
     PacketRays(const Ray* rays, int count, const Real* limits)
-        : all(count == 32 ? ~Mask{0} : (Mask{1} << count) - 1) {
+        : all(count == 32 ? ~Mask{0} : (Mask{1} << count) - 1),
+          avx2(active_kernel() == Kernel::avx2) {
         for (int r = 0; r < kMaxPacket; ++r) {
             const SlabRay slab(r < count ? rays[r] : Ray{Vec3(0), Vec3(1)});
             for (int a = 0; a < 3; ++a)
@@ -113,7 +138,9 @@ struct PacketRays {
     // nearest of their entry distances. Per ray, SlabRay::clip's arithmetic: near and far of
     // each axis by min and max, which for a box with lo ≤ hi is the plane the sign selects.
     [[gnu::always_inline]] Mask enter(const WideBvhNode& n, int k, Mask active, Real& t) const {
-        constexpr Real widen = 1.0_r + 2.0_r * gamma(3); // SlabRay::clip's enlargement
+#if GLINT_WIDE_BVH_SSE
+        if (avx2) return enter_avx2(*this, n, k, active, t);
+#endif
         Mask met = 0;
         for (int g = 0; g < kMaxPacket; g += 4) {
             if (((active >> g) & 15) == 0) continue;
@@ -127,7 +154,7 @@ struct PacketRays {
                 t_in = _mm_max_ps(t_in, _mm_min_ps(t0, t1));
                 t_out = _mm_min_ps(t_out, _mm_max_ps(t0, t1));
             }
-            t_out = _mm_min_ps(_mm_mul_ps(t_out, _mm_set1_ps(widen)), _mm_load_ps(&t_max[g]));
+            t_out = _mm_min_ps(_mm_mul_ps(t_out, _mm_set1_ps(kSlabWiden)), _mm_load_ps(&t_max[g]));
             const __m128 inside = _mm_cmple_ps(t_in, t_out);
             const Mask lanes = static_cast<Mask>(_mm_movemask_ps(inside)) & (active >> g) & 15;
             if (lanes == 0) continue;
@@ -145,7 +172,7 @@ struct PacketRays {
                     t_in = std::max(t_in, std::min(t0, t1));
                     t_out = std::min(t_out, std::max(t0, t1));
                 }
-                if (t_in <= std::min(t_out * widen, t_max[r]))
+                if (t_in <= std::min(t_out * kSlabWiden, t_max[r]))
                     met |= Mask{1} << r, t = std::min(t, t_in);
             }
 #endif
@@ -188,7 +215,7 @@ class WideBvh {
             std::uint32_t child, count;
             Real t; // where the ray enters the child's box
         };
-        // At most three children a level wait on the stack; the depth is the binary tree's.
+        // At most seven children a level wait on the stack; the depth is the binary tree's.
         Entry stack[(kBvhWidth - 1) * kMaxBvhDepth + 1];
         int top = 0;
         std::uint32_t node = 0;
@@ -197,7 +224,7 @@ class WideBvh {
             const WideBvhNode& n = nodes_[node];
             Real t_near[kBvhWidth];
             unsigned mask = wide.enter(n, t_max, t_near);
-            // The children the ray meets, nearest first (insertion into at most four).
+            // The children the ray meets, nearest first (insertion into at most eight).
             Entry hit[kBvhWidth];
             int hits = 0;
             for (; mask != 0; mask &= mask - 1) {

@@ -1,0 +1,69 @@
+#include "trace/kernel.h"
+
+#include <atomic>
+#include <cstdlib>
+
+namespace glint {
+namespace {
+
+bool processor_has(Kernel kernel) {
+    switch (kernel) {
+    case Kernel::sse:
+        return true;
+    case Kernel::avx2:
+#if defined(__x86_64__) || defined(__i386__)
+        return __builtin_cpu_supports("avx2");
+#else
+        return false;
+#endif
+    }
+    return false;
+}
+
+Kernel from_environment() {
+    const char* requested = std::getenv("GLINT_KERNEL");
+    return choose_kernel(requested ? requested : "").kernel;
+}
+
+std::atomic<Kernel>& active() {
+    static std::atomic<Kernel> kernel{from_environment()};
+    return kernel;
+}
+
+} // namespace
+
+std::string_view name_of(Kernel kernel) {
+    return kernel == Kernel::avx2 ? "avx2" : "sse";
+}
+
+std::optional<Kernel> kernel_named(std::string_view name) {
+    for (const Kernel k : {Kernel::sse, Kernel::avx2})
+        if (name == name_of(k)) return k;
+    return std::nullopt;
+}
+
+std::vector<Kernel> available_kernels() {
+    std::vector<Kernel> kernels;
+    for (const Kernel k : {Kernel::sse, Kernel::avx2})
+        if (processor_has(k)) kernels.push_back(k);
+    return kernels;
+}
+
+KernelChoice choose_kernel(std::string_view requested) {
+    const Kernel widest = available_kernels().back();
+    if (requested.empty()) return {widest, {}};
+    const std::optional<Kernel> named = kernel_named(requested);
+    if (!named) return {widest, "is not a kernel (sse, avx2)"};
+    if (!processor_has(*named)) return {widest, "is not supported by this processor"};
+    return {*named, {}};
+}
+
+Kernel active_kernel() {
+    return active().load(std::memory_order_relaxed);
+}
+
+void use_kernel(Kernel kernel) {
+    active().store(kernel, std::memory_order_relaxed);
+}
+
+} // namespace glint

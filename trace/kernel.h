@@ -1,0 +1,40 @@
+// Which instruction set the tracer's SIMD kernels use (the BVH's box tests, single rays and
+// packets): chosen once per process at start-up from what the processor has, so that the default
+// build runs on any x86-64 and still uses AVX2 where it is present. Every kernel answers every
+// query exactly alike (tests/kernel_test.cpp); only the speed differs.
+#pragma once
+
+#include <optional>
+#include <string_view>
+#include <vector>
+
+namespace glint {
+
+enum class Kernel : unsigned char {
+    sse,  // 128-bit: every x86-64 processor has it (the portable kernel)
+    avx2, // 256-bit: an eight-wide node's boxes, or eight rays of a packet, an instruction
+};
+
+std::string_view name_of(Kernel kernel);
+std::optional<Kernel> kernel_named(std::string_view name);
+
+// The kernels this processor can run, narrowest first.
+std::vector<Kernel> available_kernels();
+
+// The kernel in use: the widest available, unless the environment variable GLINT_KERNEL names
+// another (sse or avx2; one the processor lacks is an error at start-up, not a crash later).
+Kernel active_kernel();
+
+// Uses `kernel` from now on (tests force each in turn; glint's commands read GLINT_KERNEL).
+// The processor must have it.
+void use_kernel(Kernel kernel);
+
+// What active_kernel() would be for GLINT_KERNEL = `requested` (empty: unset); an error message
+// for a name that is not a kernel or one the processor lacks.
+struct KernelChoice {
+    Kernel kernel;
+    std::string_view problem; // empty when the choice stands
+};
+KernelChoice choose_kernel(std::string_view requested);
+
+} // namespace glint
