@@ -118,59 +118,5 @@ WideBvh WideBvh::refitted(std::span<const Bounds> items) const {
     return moved;
 }
 
-#if GLINT_WIDE_BVH_SSE
-// The AVX2 kernel: WideRay::enter's and PacketRays::enter's SSE operations, in the same order,
-// eight lanes at a time. Only these two functions are compiled for AVX2, so that nothing they
-// share with the rest of the program (an inline function of a header) is: the program still
-// runs on a processor without it, which never calls them (trace/kernel.h). No FMA: a multiply
-// and an add are rounded apart, as in the other kernels.
-[[gnu::target("avx2")]] unsigned enter_avx2(const WideRay& ray, const WideBvhNode& n, Real t_max,
-                                            Real (&t_near)[kBvhWidth]) {
-    static_assert(kBvhWidth == 8);
-    __m256 t_in = _mm256_setzero_ps(), t_out = _mm256_set1_ps(kInfinity);
-    for (int a = 0; a < 3; ++a) {
-        const __m256 o = _mm256_set1_ps(ray.origin[a]);
-        const __m256 inv = _mm256_set1_ps(ray.inverse_direction[a]);
-        const __m256 in =
-            _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.box[a][ray.near[a]]), o), inv);
-        const __m256 out =
-            _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.box[a][1 - ray.near[a]]), o), inv);
-        t_in = _mm256_max_ps(t_in, in);
-        t_out = _mm256_min_ps(t_out, out);
-    }
-    t_out = _mm256_min_ps(_mm256_mul_ps(t_out, _mm256_set1_ps(kSlabWiden)), _mm256_set1_ps(t_max));
-    _mm256_storeu_ps(t_near, t_in);
-    return static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(t_in, t_out, _CMP_LE_OQ)));
-}
-
-[[gnu::target("avx2")]] std::uint32_t enter_avx2(const PacketRays& packet, const WideBvhNode& n,
-                                                 int k, std::uint32_t active, Real& t) {
-    std::uint32_t met = 0;
-    for (int g = 0; g < kMaxPacket; g += 8) {
-        if (((active >> g) & 255) == 0) continue;
-        __m256 t_in = _mm256_setzero_ps(), t_out = _mm256_set1_ps(kInfinity);
-        for (int a = 0; a < 3; ++a) {
-            const __m256 o = _mm256_load_ps(&packet.origin[a][g]);
-            const __m256 inv = _mm256_load_ps(&packet.inverse_direction[a][g]);
-            const __m256 t0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(n.box[a][0][k]), o), inv);
-            const __m256 t1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(n.box[a][1][k]), o), inv);
-            t_in = _mm256_max_ps(t_in, _mm256_min_ps(t0, t1));
-            t_out = _mm256_min_ps(t_out, _mm256_max_ps(t0, t1));
-        }
-        t_out = _mm256_min_ps(_mm256_mul_ps(t_out, _mm256_set1_ps(kSlabWiden)),
-                              _mm256_load_ps(&packet.t_max[g]));
-        const __m256 inside = _mm256_cmp_ps(t_in, t_out, _CMP_LE_OQ);
-        const std::uint32_t lanes =
-            static_cast<std::uint32_t>(_mm256_movemask_ps(inside)) & (active >> g) & 255;
-        if (lanes == 0) continue;
-        met |= lanes << g;
-        alignas(32) Real entry[8];
-        _mm256_store_ps(entry, t_in);
-        for (std::uint32_t l = lanes; l != 0; l &= l - 1) t = std::min(t, entry[__builtin_ctz(l)]);
-    }
-    return met;
-}
-#endif
-
 } // namespace GLINT_PRECISION
 } // namespace glint

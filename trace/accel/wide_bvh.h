@@ -46,12 +46,16 @@ inline constexpr Real kSlabWiden = 1.0_r + 2.0_r * gamma(3);
 struct WideRay;
 struct PacketRays;
 #if GLINT_WIDE_BVH_SSE
-// The AVX2 kernel's box tests (wide_bvh.cpp, compiled for AVX2 alone): WideRay::enter and
-// PacketRays::enter, the same operations eight lanes an instruction.
-unsigned enter_avx2(const WideRay& ray, const WideBvhNode& n, Real t_max,
-                    Real (&t_near)[kBvhWidth]);
-std::uint32_t enter_avx2(const PacketRays& packet, const WideBvhNode& n, int k,
-                         std::uint32_t active, Real& t);
+// The AVX2 kernel (defined below): WideRay::enter_sse's and PacketRays::enter_sse's operations,
+// in the same order, eight lanes an instruction. Only functions marked for AVX2 are compiled
+// for it (these, and the traversals that inline them: WideBvh's *_avx2), so that nothing they
+// share with the rest of the program (an inline function of a header) is: the program still
+// runs on a processor without AVX2, which never calls them (trace/kernel.h). No FMA: a
+// multiply and an add are rounded apart, as in the other kernels.
+[[gnu::target("avx2")]] inline unsigned enter_avx2(const WideRay& ray, const WideBvhNode& n,
+                                                   Real t_max, Real (&t_near)[kBvhWidth]);
+[[gnu::target("avx2")]] inline std::uint32_t
+enter_avx2(const PacketRays& packet, const WideBvhNode& n, int k, std::uint32_t active, Real& t);
 #endif
 
 // A ray prepared for wide nodes: SlabRay's reciprocals (±1e30 for axis-parallel directions),
@@ -71,10 +75,17 @@ struct WideRay {
     }
 
     // Bit k set when the ray meets child k's box within [0, t_max]; t_near[k] where it enters.
-    [[gnu::always_inline]] unsigned enter(const WideBvhNode& n, Real t_max,
-                                          Real (&t_near)[kBvhWidth]) const {
+    // With the kernel the ray was made under.
+    unsigned enter(const WideBvhNode& n, Real t_max, Real (&t_near)[kBvhWidth]) const {
 #if GLINT_WIDE_BVH_SSE
         if (avx2) return enter_avx2(*this, n, t_max, t_near);
+#endif
+        return enter_sse(n, t_max, t_near);
+    }
+    // The same with the portable kernel: two halves of four lanes (SSE), or lane by lane.
+    [[gnu::always_inline]] unsigned enter_sse(const WideBvhNode& n, Real t_max,
+                                              Real (&t_near)[kBvhWidth]) const {
+#if GLINT_WIDE_BVH_SSE
         unsigned mask = 0;
         for (int h = 0; h < kBvhWidth; h += 4) {
             __m128 t_in = _mm_setzero_ps(), t_out = _mm_set1_ps(kInfinity);
@@ -137,10 +148,15 @@ struct PacketRays {
     // The rays of `active` that meet child k's box within [0, t_max]; `t` lowered to the
     // nearest of their entry distances. Per ray, SlabRay::clip's arithmetic: near and far of
     // each axis by min and max, which for a box with lo ≤ hi is the plane the sign selects.
-    [[gnu::always_inline]] Mask enter(const WideBvhNode& n, int k, Mask active, Real& t) const {
+    // With the kernel the packet was made under.
+    Mask enter(const WideBvhNode& n, int k, Mask active, Real& t) const {
 #if GLINT_WIDE_BVH_SSE
         if (avx2) return enter_avx2(*this, n, k, active, t);
 #endif
+        return enter_sse(n, k, active, t);
+    }
+    // The same with the portable kernel: four rays at a time (SSE), or one.
+    [[gnu::always_inline]] Mask enter_sse(const WideBvhNode& n, int k, Mask active, Real& t) const {
         Mask met = 0;
         for (int g = 0; g < kMaxPacket; g += 4) {
             if (((active >> g) & 15) == 0) continue;
@@ -181,6 +197,55 @@ struct PacketRays {
     }
 };
 
+#if GLINT_WIDE_BVH_SSE
+[[gnu::target("avx2")]] inline unsigned enter_avx2(const WideRay& ray, const WideBvhNode& n,
+                                                   Real t_max, Real (&t_near)[kBvhWidth]) {
+    static_assert(kBvhWidth == 8);
+    __m256 t_in = _mm256_setzero_ps(), t_out = _mm256_set1_ps(kInfinity);
+    for (int a = 0; a < 3; ++a) {
+        const __m256 o = _mm256_set1_ps(ray.origin[a]);
+        const __m256 inv = _mm256_set1_ps(ray.inverse_direction[a]);
+        const __m256 in =
+            _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.box[a][ray.near[a]]), o), inv);
+        const __m256 out =
+            _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.box[a][1 - ray.near[a]]), o), inv);
+        t_in = _mm256_max_ps(t_in, in);
+        t_out = _mm256_min_ps(t_out, out);
+    }
+    t_out = _mm256_min_ps(_mm256_mul_ps(t_out, _mm256_set1_ps(kSlabWiden)), _mm256_set1_ps(t_max));
+    _mm256_storeu_ps(t_near, t_in);
+    return static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(t_in, t_out, _CMP_LE_OQ)));
+}
+
+[[gnu::target("avx2")]] inline std::uint32_t
+enter_avx2(const PacketRays& packet, const WideBvhNode& n, int k, std::uint32_t active, Real& t) {
+    std::uint32_t met = 0;
+    for (int g = 0; g < kMaxPacket; g += 8) {
+        if (((active >> g) & 255) == 0) continue;
+        __m256 t_in = _mm256_setzero_ps(), t_out = _mm256_set1_ps(kInfinity);
+        for (int a = 0; a < 3; ++a) {
+            const __m256 o = _mm256_load_ps(&packet.origin[a][g]);
+            const __m256 inv = _mm256_load_ps(&packet.inverse_direction[a][g]);
+            const __m256 t0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(n.box[a][0][k]), o), inv);
+            const __m256 t1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(n.box[a][1][k]), o), inv);
+            t_in = _mm256_max_ps(t_in, _mm256_min_ps(t0, t1));
+            t_out = _mm256_min_ps(t_out, _mm256_max_ps(t0, t1));
+        }
+        t_out = _mm256_min_ps(_mm256_mul_ps(t_out, _mm256_set1_ps(kSlabWiden)),
+                              _mm256_load_ps(&packet.t_max[g]));
+        const __m256 inside = _mm256_cmp_ps(t_in, t_out, _CMP_LE_OQ);
+        const std::uint32_t lanes =
+            static_cast<std::uint32_t>(_mm256_movemask_ps(inside)) & (active >> g) & 255;
+        if (lanes == 0) continue;
+        met |= lanes << g;
+        alignas(32) Real entry[8];
+        _mm256_store_ps(entry, t_in);
+        for (std::uint32_t l = lanes; l != 0; l &= l - 1) t = std::min(t, entry[__builtin_ctz(l)]);
+    }
+    return met;
+}
+#endif
+
 class WideBvh {
   public:
     WideBvh() = default;
@@ -209,6 +274,66 @@ class WideBvh {
     void traverse_leaves(
         const Ray& ray, Real& t_max, Counters& counters, VisitLeaf&& visit,
         PrefetchLeaf&& prefetch_leaf = [](std::uint32_t) {}) const {
+#if GLINT_WIDE_BVH_SSE
+        if (active_kernel() == Kernel::avx2)
+            return traverse_leaves_avx2(ray, t_max, counters, visit, prefetch_leaf);
+#endif
+        traverse_leaves_with<false>(ray, t_max, counters, visit, prefetch_leaf);
+    }
+
+    // The acceleration-structure contract (accel.h): visit(item, t_max) for every item of the
+    // leaves the ray may meet.
+    template <class Counters, class Visit>
+    void traverse(const Ray& ray, Real& t_max, Counters& counters, Visit&& visit) const {
+        traverse_leaves(ray, t_max, counters,
+                        [&](std::uint32_t begin, std::uint32_t end, Real& limit) {
+                            for (std::uint32_t slot = begin; slot < end; ++slot) {
+                                counters.primitive();
+                                if (visit(items_[slot], limit)) return true;
+                            }
+                            return false;
+                        });
+    }
+
+    // Packet traversal for up to kMaxPacket coherent rays (a tile's camera rays, or its shadow
+    // rays towards one light): each node is fetched once for all the rays that reach it, and
+    // each child box is tested against four or eight rays at a time (PacketRays). The test is
+    // the single ray's slab test up to which plane is near (taken by min/max rather than by
+    // sign), so every ray is offered the leaves its own traversal could be offered (in another
+    // order; the visitors' answers do not depend on the order: tests/accel_test.cpp).
+    // visit(ray, first_slot, end_slot, t_max) may shorten that ray's limit and returns true when
+    // the ray is done (any hit found). t_max[r] is each ray's limit, as in traverse.
+    template <class Counters, class VisitLeaf>
+    void traverse_packet(const Ray* rays, int count, const Real* t_max, Counters& counters,
+                         VisitLeaf&& visit) const {
+#if GLINT_WIDE_BVH_SSE
+        if (active_kernel() == Kernel::avx2)
+            return traverse_packet_avx2(rays, count, t_max, counters, visit);
+#endif
+        traverse_packet_with<false>(rays, count, t_max, counters, visit);
+    }
+
+  private:
+#if GLINT_WIDE_BVH_SSE
+    // The traversals compiled for AVX2, their box tests inlined (enter_avx2).
+    template <class Counters, class VisitLeaf, class PrefetchLeaf>
+    [[gnu::target("avx2")]] void traverse_leaves_avx2(const Ray& ray, Real& t_max,
+                                                      Counters& counters, VisitLeaf& visit,
+                                                      PrefetchLeaf& prefetch_leaf) const {
+        traverse_leaves_with<true>(ray, t_max, counters, visit, prefetch_leaf);
+    }
+    template <class Counters, class VisitLeaf>
+    [[gnu::target("avx2")]] void traverse_packet_avx2(const Ray* rays, int count, const Real* t_max,
+                                                      Counters& counters, VisitLeaf& visit) const {
+        traverse_packet_with<true>(rays, count, t_max, counters, visit);
+    }
+#endif
+
+    // traverse_leaves with the AVX2 kernel's box test or the portable one's.
+    template <bool kAvx2, class Counters, class VisitLeaf, class PrefetchLeaf>
+    [[gnu::always_inline]] void traverse_leaves_with(const Ray& ray, Real& t_max,
+                                                     Counters& counters, VisitLeaf& visit,
+                                                     PrefetchLeaf& prefetch_leaf) const {
         if (nodes_.empty()) return;
         const WideRay wide(ray);
         struct Entry {
@@ -223,7 +348,13 @@ class WideBvh {
             counters.node();
             const WideBvhNode& n = nodes_[node];
             Real t_near[kBvhWidth];
-            unsigned mask = wide.enter(n, t_max, t_near);
+            unsigned mask;
+#if GLINT_WIDE_BVH_SSE
+            if constexpr (kAvx2)
+                mask = enter_avx2(wide, n, t_max, t_near);
+            else
+#endif
+                mask = wide.enter_sse(n, t_max, t_near);
             // The children the ray meets, nearest first (insertion into at most eight).
             Entry hit[kBvhWidth];
             int hits = 0;
@@ -258,31 +389,10 @@ class WideBvh {
         }
     }
 
-    // The acceleration-structure contract (accel.h): visit(item, t_max) for every item of the
-    // leaves the ray may meet.
-    template <class Counters, class Visit>
-    void traverse(const Ray& ray, Real& t_max, Counters& counters, Visit&& visit) const {
-        traverse_leaves(ray, t_max, counters,
-                        [&](std::uint32_t begin, std::uint32_t end, Real& limit) {
-                            for (std::uint32_t slot = begin; slot < end; ++slot) {
-                                counters.primitive();
-                                if (visit(items_[slot], limit)) return true;
-                            }
-                            return false;
-                        });
-    }
-
-    // Packet traversal for up to kMaxPacket coherent rays (a tile's camera rays, or its shadow
-    // rays towards one light): each node is fetched once for all the rays that reach it, and
-    // each child box is tested against four rays at a time (PacketRays). The test is the single
-    // ray's slab test up to which plane is near (taken by min/max rather than by sign), so every
-    // ray is offered the leaves its own traversal could be offered (in another order; the
-    // visitors' answers do not depend on the order: tests/accel_test.cpp).
-    // visit(ray, first_slot, end_slot, t_max) may shorten that ray's limit and returns true when
-    // the ray is done (any hit found). t_max[r] is each ray's limit, as in traverse.
-    template <class Counters, class VisitLeaf>
-    void traverse_packet(const Ray* rays, int count, const Real* t_max, Counters& counters,
-                         VisitLeaf&& visit) const {
+    // traverse_packet with the AVX2 kernel's box test or the portable one's.
+    template <bool kAvx2, class Counters, class VisitLeaf>
+    [[gnu::always_inline]] void traverse_packet_with(const Ray* rays, int count, const Real* t_max,
+                                                     Counters& counters, VisitLeaf& visit) const {
         assert(count <= kMaxPacket);
         if (nodes_.empty() || count == 0) return;
         PacketRays packet(rays, count, t_max);
@@ -306,7 +416,13 @@ class WideBvh {
                 for (int k = 0; k < kBvhWidth; ++k) {
                     if (n.child[k] == kEmptyChild) continue;
                     Real t = kInfinity;
-                    const Mask met = packet.enter(n, k, active, t);
+                    Mask met;
+#if GLINT_WIDE_BVH_SSE
+                    if constexpr (kAvx2)
+                        met = enter_avx2(packet, n, k, active, t);
+                    else
+#endif
+                        met = packet.enter_sse(n, k, active, t);
                     if (met == 0) continue;
                     const Entry e{n.child[k], n.count[k], met, t};
                     int at = hits++; // nearest first
@@ -332,7 +448,6 @@ class WideBvh {
         }
     }
 
-  private:
     void prefetch(std::uint32_t node) const {
         const char* p = reinterpret_cast<const char*>(&nodes_[node]);
         for (std::size_t line = 0; line < sizeof(WideBvhNode); line += 64)
