@@ -141,7 +141,6 @@ TEST(Kernel, TriangleBlocksAgreeExactlyWithTheSingleTest) {
 TEST(Kernel, EveryKernelTestsNodeBoxesExactlyAsTheScalarSlabTest) {
     std::mt19937 rng(11);
     std::uniform_real_distribution<float> u(-1, 1);
-    const Kernel before = active_kernel();
     const std::vector<Kernel> kernels = available_kernels();
     ASSERT_EQ(kernels.front(), Kernel::sse);
     const auto random_node = [&] {
@@ -211,11 +210,12 @@ TEST(Kernel, EveryKernelTestsNodeBoxesExactlyAsTheScalarSlabTest) {
             met += __builtin_popcount(expected_mask[r]), lanes += kBvhWidth;
         }
         for (const Kernel kernel : kernels) {
-            use_kernel(kernel);
+            const bool avx2 = kernel == Kernel::avx2;
             for (int r = 0; r < count; ++r) {
                 const WideRay wide(rays[r]);
                 Real t_near[kBvhWidth];
-                const unsigned mask = wide.enter(n, t_max[r], t_near);
+                const unsigned mask = avx2 ? enter_avx2(wide, n, t_max[r], t_near)
+                                           : wide.enter_sse(n, t_max[r], t_near);
                 ASSERT_EQ(mask, expected_mask[r]) << name_of(kernel) << " node " << i;
                 for (int k = 0; k < kBvhWidth; ++k) {
                     if ((mask >> k) & 1) {
@@ -232,12 +232,14 @@ TEST(Kernel, EveryKernelTestsNodeBoxesExactlyAsTheScalarSlabTest) {
                 for (int r = 0; r < count; ++r)
                     if ((active >> r) & 1 && (expected_mask[r] >> k) & 1)
                         expected |= 1u << r, expected_t = std::min(expected_t, expected_near[r][k]);
-                ASSERT_EQ(packet.enter(n, k, active, t), expected) << name_of(kernel);
+                ASSERT_EQ(avx2 ? enter_avx2(packet, n, k, active, t)
+                               : packet.enter_sse(n, k, active, t),
+                          expected)
+                    << name_of(kernel);
                 ASSERT_EQ(t, expected_t) << name_of(kernel);
             }
         }
     }
-    use_kernel(before);
     EXPECT_GT(met, lanes / 20) << "too few boxes met to mean much"; // about 7% are
     EXPECT_LT(met, lanes * 9 / 10) << "too few boxes missed to mean much";
 }

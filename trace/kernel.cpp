@@ -1,6 +1,5 @@
 #include "trace/kernel.h"
 
-#include <atomic>
 #include <cstdlib>
 
 namespace glint {
@@ -25,8 +24,9 @@ Kernel from_environment() {
     return choose_kernel(requested ? requested : "").kernel;
 }
 
-std::atomic<Kernel>& active() {
-    static std::atomic<Kernel> kernel{from_environment()};
+// Read once, on first use: the choice holds for the process.
+Kernel active() {
+    static const Kernel kernel = from_environment();
     return kernel;
 }
 
@@ -59,11 +59,7 @@ KernelChoice choose_kernel(std::string_view requested) {
 }
 
 Kernel active_kernel() {
-    return active().load(std::memory_order_relaxed);
-}
-
-void use_kernel(Kernel kernel) {
-    active().store(kernel, std::memory_order_relaxed);
+    return active();
 }
 
 } // namespace glint

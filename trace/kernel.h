@@ -25,10 +25,6 @@ std::vector<Kernel> available_kernels();
 // another (sse or avx2; one the processor lacks is an error at start-up, not a crash later).
 Kernel active_kernel();
 
-// Uses `kernel` from now on (tests force each in turn; glint's commands read GLINT_KERNEL).
-// The processor must have it.
-void use_kernel(Kernel kernel);
-
 // What active_kernel() would be for GLINT_KERNEL = `requested` (empty: unset); an error message
 // for a name that is not a kernel or one the processor lacks.
 struct KernelChoice {

@@ -66,23 +66,16 @@ struct WideRay {
     Vec3 origin;
     Vec3 inverse_direction;
     int near[3]; // 0: the low plane is entered first; 1: the high one
-    bool avx2;   // the kernel in use (active_kernel) when the ray was made
 
-    explicit WideRay(const Ray& ray) : avx2(active_kernel() == Kernel::avx2) {
+    explicit WideRay(const Ray& ray) {
         const SlabRay slab(ray);
         origin = slab.origin, inverse_direction = slab.inverse_direction;
         for (int a = 0; a < 3; ++a) near[a] = std::signbit(inverse_direction[a]) ? 1 : 0;
     }
 
     // Bit k set when the ray meets child k's box within [0, t_max]; t_near[k] where it enters.
-    // With the kernel the ray was made under.
-    unsigned enter(const WideBvhNode& n, Real t_max, Real (&t_near)[kBvhWidth]) const {
-#if GLINT_WIDE_BVH_SSE
-        if (avx2) return enter_avx2(*this, n, t_max, t_near);
-#endif
-        return enter_sse(n, t_max, t_near);
-    }
-    // The same with the portable kernel: two halves of four lanes (SSE), or lane by lane.
+    // The portable kernel: two halves of four lanes (SSE), or lane by lane; enter_avx2 is the
+    // same with eight.
     [[gnu::always_inline]] unsigned enter_sse(const WideBvhNode& n, Real t_max,
                                               Real (&t_near)[kBvhWidth]) const {
 #if GLINT_WIDE_BVH_SSE
@@ -132,11 +125,9 @@ struct PacketRays {
     alignas(32) Real inverse_direction[3][kMaxPacket];
     alignas(32) Real t_max[kMaxPacket];
     Mask all;
-    bool avx2; // the kernel in use (active_kernel) when the packet was made
 
     PacketRays(const Ray* rays, int count, const Real* limits)
-        : all(count == 32 ? ~Mask{0} : (Mask{1} << count) - 1),
-          avx2(active_kernel() == Kernel::avx2) {
+        : all(count == 32 ? ~Mask{0} : (Mask{1} << count) - 1) {
         for (int r = 0; r < kMaxPacket; ++r) {
             const SlabRay slab(r < count ? rays[r] : Ray{Vec3(0), Vec3(1)});
             for (int a = 0; a < 3; ++a)
@@ -148,14 +139,7 @@ struct PacketRays {
     // The rays of `active` that meet child k's box within [0, t_max]; `t` lowered to the
     // nearest of their entry distances. Per ray, SlabRay::clip's arithmetic: near and far of
     // each axis by min and max, which for a box with lo ≤ hi is the plane the sign selects.
-    // With the kernel the packet was made under.
-    Mask enter(const WideBvhNode& n, int k, Mask active, Real& t) const {
-#if GLINT_WIDE_BVH_SSE
-        if (avx2) return enter_avx2(*this, n, k, active, t);
-#endif
-        return enter_sse(n, k, active, t);
-    }
-    // The same with the portable kernel: four rays at a time (SSE), or one.
+    // The portable kernel: four rays at a time (SSE), or one; enter_avx2 is the same with eight.
     [[gnu::always_inline]] Mask enter_sse(const WideBvhNode& n, int k, Mask active, Real& t) const {
         Mask met = 0;
         for (int g = 0; g < kMaxPacket; g += 4) {

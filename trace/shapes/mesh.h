@@ -108,8 +108,9 @@ inline TriangleHit intersect_triangle(Vec3 p0, Vec3 p1, Vec3 p2, const Ray& ray)
 // operations in the same order lane by lane, four lanes an instruction; a lane whose edge
 // functions meet a zero (the ray through an edge or a vertex in float) is answered by the
 // single test, which decides it in double. Elsewhere (double precision), one lane at a time.
-inline void intersect_triangles(const TriangleBlock& block, std::uint32_t lanes,
-                                const WatertightRay& r, TriangleHit (&hits)[kTriangleLanes]) {
+[[gnu::always_inline]] inline void intersect_triangles(const TriangleBlock& block,
+                                                       std::uint32_t lanes, const WatertightRay& r,
+                                                       TriangleHit (&hits)[kTriangleLanes]) {
 #if GLINT_WIDE_BVH_SSE
     const int axis[3] = {r.kx, r.ky, r.kz};
     __m128 x[3], y[3], z[3]; // corner k relative to the origin, sheared: x, y; and along kz
@@ -199,7 +200,7 @@ inline void prefetch_block(const Mesh& mesh, std::uint32_t first) {
 // lower triangle index (`triangle(slot)`). The one test of intersect_mesh and
 // intersect_mesh_packet.
 template <class Counters, class TriangleOf>
-void consider_triangles(const Mesh& mesh, std::uint32_t begin, std::uint32_t end,
+[[gnu::always_inline]] inline void consider_triangles(const Mesh& mesh, std::uint32_t begin, std::uint32_t end,
                         const TriangleOf& triangle_of, const WatertightRay& ray, Real t_max,
                         ShapeHit& best, Counters& counters) {
     for (std::uint32_t first = begin; first < end; first += kTriangleLanes) {
