@@ -24,7 +24,7 @@ void SceneOptions::add_to(CLI::App& cmd) {
                         ->check(CLI::NonNegativeNumber);
     cmd.add_option("--size", size, "Image size WIDTHxHEIGHT, overriding the scene's camera");
     cmd.add_option("--accel", accel,
-                   "Acceleration structure: bvh (4-wide, SIMD), bvh2 (binary), spheres, grid, kd "
+                   "Acceleration structure: bvh (8-wide, SIMD), bvh2 (binary), spheres, grid, kd "
                    "or list; auto: list below 16 objects, else bvh")
         ->capture_default_str()
         ->check(CLI::IsMember([] {

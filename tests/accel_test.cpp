@@ -119,7 +119,7 @@ TEST_P(AccelTest, PacketsAgreeExactlyWithTheListRayByRay) {
     std::mt19937 rng(99);
     std::uniform_real_distribution<float> u(-1, 1);
     std::uint64_t rays = 0;
-    // The four-wide BVH traverses packets; the other structures answer them ray by ray. Under the
+    // The eight-wide BVH traverses packets; the other structures answer them ray by ray. Under the
     // sanitizers (test_scenes.h), fewer scenes.
     const unsigned scenes = kind == AccelKind::bvh ? (testing::kUnderSanitizers ? 50 : 250)
                                                    : (testing::kUnderSanitizers ? 10 : 20);
@@ -371,7 +371,7 @@ TEST(Accel, BvhDepthStaysWithinTheTraversalStackWhereSahPeelsOneObjectALevel) {
     EXPECT_GT(depth, kSahDepth) << "no longer the adversarial case this test is about";
 }
 
-// A mesh's own BVH (four-wide, triangles in leaf order) returns exactly what testing every
+// A mesh's own BVH (eight-wide, triangles in blocks in leaf order) returns exactly what testing every
 // triangle in index order returns: the nearest t, and on equal t the lower triangle index, so
 // the answer does not depend on the order the tree offers its leaves in. The mesh is a grid of
 // triangles sharing edges and vertices (rays aimed at them tie on t), with a few triangles

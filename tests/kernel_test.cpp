@@ -6,6 +6,8 @@
 
 #include "trace/kernel.h"
 #include "trace/shapes/mesh.h"
+#include "trace/shapes/sphere.h"
+#include "trace/transform.h"
 
 #include <gtest/gtest.h>
 
@@ -242,6 +244,78 @@ TEST(Kernel, EveryKernelTestsNodeBoxesExactlyAsTheScalarSlabTest) {
     }
     EXPECT_GT(met, lanes / 20) << "too few boxes met to mean much"; // about 7% are
     EXPECT_LT(met, lanes * 9 / 10) << "too few boxes missed to mean much";
+}
+
+// sphere_roots4 (four spheres placed by an offset and a uniform scale, against one ray)
+// against sphere_roots on the ray each sphere's Transform::to_object gives, lane by lane, bit for
+// bit: rays through the centre, tangent (grazing), from inside, axis-parallel, and missing;
+// radii from 1e-4 to 1e4, centres up to 1e5 from the origin; identity and translation too
+// (inverse scale 1). Two million lane tests in Release.
+TEST(Kernel, SphereBlocksAgreeExactlyWithTheSingleTest) {
+    std::mt19937 rng(13);
+    std::uniform_real_distribution<float> u(-1, 1);
+    static constexpr float kRadii[] = {1e-4f, 1e-2f, 1, 1, 1e2f, 1e4f};
+    const int blocks = testing::kUnderSanitizers ? 25000 : 250000;
+    std::uint64_t hits = 0, tests = 0;
+    for (int b = 0; b < blocks; ++b) {
+        Real x[4], y[4], z[4], inverse_scale[4];
+        Transform placed[4];
+        for (int i = 0; i < 4; ++i) {
+            const double radius = kRadii[rng() % 6];
+            const DVec3 centre =
+                DVec3(u(rng), u(rng), u(rng)) * (rng() % 3 == 0 ? 1e5 : 10.0 * radius);
+            const int kind = static_cast<int>(rng() % 4);
+            const DMat4 m = kind == 0   ? DMat4(1.0)
+                            : kind == 1 ? translation_matrix(centre)
+                                        : translation_matrix(centre) * scale_matrix(DVec3(radius));
+            placed[i] = make_transform(m);
+            const bool scaled = placed[i].kind == TransformClass::uniform_scale;
+            ASSERT_NE(placed[i].kind, TransformClass::general);
+            x[i] = placed[i].offset.x, y[i] = placed[i].offset.y, z[i] = placed[i].offset.z;
+            inverse_scale[i] = scaled ? placed[i].inverse_scale : 1.0_r;
+        }
+        for (int r = 0; r < 8; ++r) {
+            // Aimed at one sphere: through its centre, tangent to it, or nearby; from outside or
+            // from inside it.
+            const Transform& at = placed[rng() % 4];
+            const Vec3 centre = at.offset;
+            const Real radius = at.kind == TransformClass::uniform_scale ? at.scale : 1;
+            Vec3 direction(u(rng), u(rng), u(rng));
+            if (rng() % 4 == 0) direction = Vec3(0), direction[rng() % 3] = 1;
+            if (direction == Vec3(0.0f)) direction = {1, 0, 0};
+            const Vec3 side = glm::normalize(glm::cross(direction, Vec3(0.3f, 0.5f, 0.7f)));
+            Vec3 origin = centre - 3.0f * radius * glm::normalize(direction);
+            switch (rng() % 4) {
+            case 0: // tangent
+                origin += radius * side;
+                break;
+            case 1: // from inside
+                origin = centre + 0.5f * radius * Vec3(u(rng), u(rng), u(rng));
+                break;
+            case 2:
+                origin += 2.0f * radius * u(rng) * side;
+                break;
+            default:
+                break;
+            }
+            const Ray ray{origin, direction};
+            SphereRoots got[4];
+            sphere_roots4(ray, x, y, z, inverse_scale, got);
+            for (int i = 0; i < 4; ++i) {
+                const SphereRoots expected = sphere_roots(placed[i].to_object(ray));
+                ASSERT_EQ(got[i].missed, expected.missed) << "block " << b << " lane " << i;
+                if (expected.missed) continue;
+                ASSERT_EQ(std::bit_cast<std::uint32_t>(got[i].t0),
+                          std::bit_cast<std::uint32_t>(expected.t0))
+                    << "block " << b << " lane " << i;
+                ASSERT_EQ(std::bit_cast<std::uint32_t>(got[i].t1),
+                          std::bit_cast<std::uint32_t>(expected.t1))
+                    << "block " << b << " lane " << i;
+                ++tests, hits += sphere_hit(expected, kInfinity).found();
+            }
+        }
+    }
+    EXPECT_GT(hits, tests / 4) << "too few hits to mean much";
 }
 
 } // namespace

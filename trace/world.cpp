@@ -105,6 +105,20 @@ void World::order_leaves() {
     leaf_objects_.reserve(bvh->items().size());
     for (const std::uint32_t item : bvh->items())
         leaf_objects_.push_back({objects_[bounded_[item]], bounded_[item]});
+    // Spheres placed without rotation or shear map to object space as (p − offset)·inverse_scale
+    // (Transform::to_object; 1 for identity and translation, which then maps exactly as they
+    // do). Three entries of padding, so that four may be read from any slot.
+    const std::size_t padded = leaf_objects_.size() + 3;
+    leaf_spheres_.x.assign(padded, 0), leaf_spheres_.y.assign(padded, 0);
+    leaf_spheres_.z.assign(padded, 0), leaf_spheres_.inverse_scale.assign(padded, 0);
+    for (std::size_t slot = 0; slot < leaf_objects_.size(); ++slot) {
+        const Object& o = leaf_objects_[slot].object;
+        if (o.shape != ShapeKind::sphere || o.transform.kind == TransformClass::general) continue;
+        const bool scaled = o.transform.kind == TransformClass::uniform_scale;
+        leaf_spheres_.x[slot] = o.transform.offset.x, leaf_spheres_.y[slot] = o.transform.offset.y;
+        leaf_spheres_.z[slot] = o.transform.offset.z;
+        leaf_spheres_.inverse_scale[slot] = scaled ? o.transform.inverse_scale : 1.0_r;
+    }
 }
 
 template <class Counters, class Visit>
@@ -112,17 +126,13 @@ void World::traverse(const Ray& ray, Real& t_max, Counters& counters, Visit&& vi
     if (const WideBvh* bvh = accel_.wide_bvh()) {
         bvh->traverse_leaves(ray, t_max, counters,
                              [&](std::uint32_t begin, std::uint32_t end, Real& limit) {
-                                 for (std::uint32_t slot = begin; slot < end; ++slot) {
-                                     counters.primitive();
-                                     const LeafObject& leaf = leaf_objects_[slot];
-                                     if (visit(leaf.index, leaf.object, limit)) return true;
-                                 }
-                                 return false;
+                                 return visit_leaf(ray, begin, end, limit, counters, visit);
                              });
         return;
     }
     accel_.traverse(ray, t_max, counters, [&](std::uint32_t item, Real& limit) {
-        return visit(bounded_[item], objects_[bounded_[item]], limit);
+        const Object& object = objects_[bounded_[item]];
+        return visit(bounded_[item], object, limit, shape_of(object, ray, counters));
     });
 }
 
@@ -134,10 +144,10 @@ void World::traverse(const Ray& ray, Real& t_max, Counters& counters, Visit&& vi
 // lie far outside their box.
 // Box tests against a limit use it widened by rounding (loose(), trace/math.h).
 
-template <class Counters>
-ShapeHit World::intersect_object(const Object& object, const Ray& world_ray, const LazySlab& slab,
-                                 Real t_max, bool box_tested, Counters& counters) const {
-    const ShapeHit hit = intersect_shape(object, world_ray, t_max, counters);
+template <class ShapeOf>
+ShapeHit World::intersect_object(const Object& object, const LazySlab& slab, Real t_max,
+                                 bool box_tested, const ShapeOf& shape_of) const {
+    const ShapeHit hit = shape_of(t_max);
     return box_tested || within_box(object, hit, slab, t_max) ? hit : ShapeHit{};
 }
 
@@ -150,18 +160,56 @@ ShapeHit World::intersect_shape(const Object& object, const Ray& world_ray, Real
     });
 }
 
+template <class Counters>
+auto World::shape_of(const Object& object, const Ray& ray, Counters& counters) const {
+    return [&object, &ray, &counters, this](Real t_max) {
+        return intersect_shape(object, ray, t_max, counters);
+    };
+}
+
+// A leaf object's shape hit: its own test, or for a sphere placed without rotation or shear,
+// from the roots of the four spheres from its slot on, computed together on first use and kept
+// in `roots` for the leaf's next slots (sphere_roots4: the same roots as its own test).
+template <class Counters>
+ShapeHit World::leaf_shape_hit(std::uint32_t slot, const Ray& ray, Real t_max, LeafRoots& roots,
+                               Counters& counters) const {
+    const Real* inverse_scale = leaf_spheres_.inverse_scale.data();
+    if (inverse_scale[slot] == 0)
+        return intersect_shape(leaf_objects_[slot].object, ray, t_max, counters);
+    if (slot < roots.first || slot >= roots.first + 4) {
+        sphere_roots4(ray, &leaf_spheres_.x[slot], &leaf_spheres_.y[slot], &leaf_spheres_.z[slot],
+                      &inverse_scale[slot], roots.roots);
+        roots.first = slot;
+    }
+    return sphere_hit(roots.roots[slot - roots.first], t_max);
+}
+
+template <class Counters, class Visit>
+bool World::visit_leaf(const Ray& ray, std::uint32_t begin, std::uint32_t end, Real& t_max,
+                       Counters& counters, Visit&& visit) const {
+    LeafRoots roots;
+    for (std::uint32_t slot = begin; slot < end; ++slot) {
+        counters.primitive();
+        const LeafObject& leaf = leaf_objects_[slot];
+        const auto shape = [&, slot](Real limit) {
+            return leaf_shape_hit(slot, ray, limit, roots, counters);
+        };
+        if (visit(leaf.index, leaf.object, t_max, shape)) return true;
+    }
+    return false;
+}
+
 // Ties: on equal t the lower object index wins, whatever order a structure visits objects in,
 // so every structure returns exactly the list's hit. Each object is therefore tested up to the
 // next float above the best t, and an equal t replaces the best only from a lower index.
-template <class Counters>
+template <class ShapeOf>
 void World::consider(Closest& query, std::uint32_t index, const Object& object,
-                     Counters& counters) const {
+                     const ShapeOf& shape_of) const {
     if (index == query.skip) return;
     Hit& best = query.best;
     const Real limit = best.found() ? std::nextafter(best.t, kInfinity) : best.t;
     const bool boxes_tested = accel_.kind() == AccelKind::list; // each item's box, first
-    const ShapeHit h =
-        intersect_object(object, *query.ray, query.slab, limit, boxes_tested, counters);
+    const ShapeHit h = intersect_object(object, query.slab, limit, boxes_tested, shape_of);
     if (h.t < best.t || (h.t == best.t && best.found() && index < best.object))
         best = {h.t, index, h.part, h.u, h.v};
 }
@@ -169,7 +217,8 @@ void World::consider(Closest& query, std::uint32_t index, const Object& object,
 // Let the structure prune only beyond the best hit, loosely: ties at best.t must still be seen.
 template <class Counters> Real World::begin_closest(Closest& query, Counters& counters) const {
     for (const std::uint32_t object : unbounded_)
-        counters.primitive(), consider(query, object, objects_[object], counters);
+        counters.primitive(), consider(query, object, objects_[object],
+                                       shape_of(objects_[object], *query.ray, counters));
     return loose(query.best.t);
 }
 
@@ -178,11 +227,12 @@ Hit World::closest(const Ray& ray, Real t_max, std::uint32_t skip, Counters& cou
     Closest query{&ray, LazySlab(ray), skip, {}};
     query.best.t = t_max;
     Real limit = begin_closest(query, counters);
-    traverse(ray, limit, counters, [&](std::uint32_t index, const Object& object, Real& t_limit) {
-        consider(query, index, object, counters);
-        t_limit = loose(query.best.t);
-        return false;
-    });
+    traverse(ray, limit, counters,
+             [&](std::uint32_t index, const Object& object, Real& t_limit, const auto& shape) {
+                 consider(query, index, object, shape);
+                 t_limit = loose(query.best.t);
+                 return false;
+             });
     return query.best;
 }
 
@@ -201,25 +251,25 @@ void World::closest_packet(std::span<const Ray> rays, Hit* hits, Counters& count
         query[r] = {&rays[r], LazySlab(rays[r]), kNoObject, {}};
         limit[r] = begin_closest(query[r], counters);
     }
-    bvh->traverse_packet(rays.data(), static_cast<int>(rays.size()), limit, counters,
-                         [&](int r, std::uint32_t begin, std::uint32_t end, Real& t_limit) {
-                             for (std::uint32_t slot = begin; slot < end; ++slot) {
-                                 counters.primitive();
-                                 const LeafObject& leaf = leaf_objects_[slot];
-                                 consider(query[r], leaf.index, leaf.object, counters);
-                             }
-                             t_limit = loose(query[r].best.t);
-                             return false;
-                         });
+    bvh->traverse_packet(
+        rays.data(), static_cast<int>(rays.size()), limit, counters,
+        [&](int r, std::uint32_t begin, std::uint32_t end, Real& t_limit) {
+            visit_leaf(rays[r], begin, end, t_limit, counters,
+                       [&](std::uint32_t index, const Object& object, Real&, const auto& shape) {
+                           consider(query[r], index, object, shape);
+                           return false;
+                       });
+            t_limit = loose(query[r].best.t);
+            return false;
+        });
     for (std::size_t r = 0; r < rays.size(); ++r) hits[r] = query[r].best;
 }
 
-template <class Counters, class Blocks>
-bool World::blocks_ray(const Ray& ray, const LazySlab& slab, Real t_max, std::uint32_t skip,
-                       std::uint32_t index, const Object& object, bool box_tested,
-                       Counters& counters, const Blocks& blocks) const {
-    return index != skip &&
-           intersect_object(object, ray, slab, t_max, box_tested, counters).found() &&
+template <class ShapeOf, class Blocks>
+bool World::blocks_ray(const LazySlab& slab, Real t_max, std::uint32_t skip, std::uint32_t index,
+                       const Object& object, bool box_tested, const ShapeOf& shape_of,
+                       const Blocks& blocks) const {
+    return index != skip && intersect_object(object, slab, t_max, box_tested, shape_of).found() &&
            blocks(index);
 }
 
@@ -230,7 +280,8 @@ bool World::any(const Ray& ray, Real t_max, std::uint32_t skip, Counters& counte
     const bool boxes_tested = accel_.kind() == AccelKind::list; // each item's box, first
     for (const std::uint32_t object : unbounded_) {
         counters.primitive();
-        if (blocks_ray(ray, slab, t_max, skip, object, objects_[object], false, counters, blocks))
+        if (blocks_ray(slab, t_max, skip, object, objects_[object], false,
+                       shape_of(objects_[object], ray, counters), blocks))
             return true;
     }
     bool found = false;
@@ -238,10 +289,11 @@ bool World::any(const Ray& ray, Real t_max, std::uint32_t skip, Counters& counte
     // first against t_max itself, missed an occluder whose box entry rounded just beyond the
     // end of a shadow ray 2e9 long, which the BVH counted (fuzz_nff).
     Real limit = loose(t_max);
-    traverse(ray, limit, counters, [&](std::uint32_t index, const Object& object, Real&) {
-        found = blocks_ray(ray, slab, t_max, skip, index, object, boxes_tested, counters, blocks);
-        return found;
-    });
+    traverse(ray, limit, counters,
+             [&](std::uint32_t index, const Object& object, Real&, const auto& shape) {
+                 found = blocks_ray(slab, t_max, skip, index, object, boxes_tested, shape, blocks);
+                 return found;
+             });
     return found;
 }
 
@@ -266,8 +318,8 @@ void World::any_packet(std::span<const Ray> rays, Real t_max, const std::uint32_
         found[r] = false;
         for (const std::uint32_t object : unbounded_) {
             counters.primitive();
-            if ((found[r] = blocks_ray(rays[r], slab[r], t_max, skips[r], object, objects_[object],
-                                       false, counters, every)))
+            if ((found[r] = blocks_ray(slab[r], t_max, skips[r], object, objects_[object], false,
+                                       shape_of(objects_[object], rays[r], counters), every)))
                 break;
         }
         if (found[r]) continue;
@@ -275,18 +327,17 @@ void World::any_packet(std::span<const Ray> rays, Real t_max, const std::uint32_
         pending[count] = rays[r];
         limit[count++] = loose(t_max);
     }
-    bvh->traverse_packet(pending, count, limit, counters,
-                         [&](int k, std::uint32_t begin, std::uint32_t end, Real&) {
-                             const int r = which[k];
-                             for (std::uint32_t slot = begin; slot < end; ++slot) {
-                                 counters.primitive();
-                                 const LeafObject& leaf = leaf_objects_[slot];
-                                 if (blocks_ray(rays[r], slab[r], t_max, skips[r], leaf.index,
-                                                leaf.object, false, counters, every))
-                                     return found[r] = true;
-                             }
-                             return false;
-                         });
+    bvh->traverse_packet(
+        pending, count, limit, counters,
+        [&](int k, std::uint32_t begin, std::uint32_t end, Real& limit) {
+            const int r = which[k];
+            return found[r] = visit_leaf(
+                       rays[r], begin, end, limit, counters,
+                       [&](std::uint32_t index, const Object& object, Real&, const auto& shape) {
+                           return blocks_ray(slab[r], t_max, skips[r], index, object, false, shape,
+                                             every);
+                       });
+        });
 }
 
 Hit World::intersect(const Ray& ray, Real t_max, std::uint32_t skip) const {
@@ -330,8 +381,8 @@ void World::occluded_packet(std::span<const Ray> rays, Real t_max, const std::ui
 
 Hit World::intersect_one(std::uint32_t object, const Ray& ray, Real t_max) const {
     NoCounters none;
-    return hit_on(object,
-                  intersect_object(objects_[object], ray, LazySlab(ray), t_max, false, none));
+    return hit_on(object, intersect_object(objects_[object], LazySlab(ray), t_max, false,
+                                           shape_of(objects_[object], ray, none)));
 }
 
 void World::intersect_one_packet(std::uint32_t index, std::span<const Ray> rays, Hit* hits) const {

@@ -159,13 +159,30 @@ class World {
   private:
     // The object's first hit in (0, t_max), counted only if the ray meets the object's box in
     // that interval (`box_tested`: the structure has checked that already; `slab`: the ray's).
-    template <class Counters>
-    ShapeHit intersect_object(const Object& object, const Ray& world_ray, const LazySlab& slab,
-                              Real t_max, bool box_tested, Counters& counters) const;
+    // shape_of(t_max): the shape's hit in object space (shape_of() or leaf_shape_hit).
+    template <class ShapeOf>
+    ShapeHit intersect_object(const Object& object, const LazySlab& slab, Real t_max,
+                              bool box_tested, const ShapeOf& shape_of) const;
     // The same without the box check: the shape's own intersection routine.
     template <class Counters>
     ShapeHit intersect_shape(const Object& object, const Ray& world_ray, Real t_max,
                              Counters& counters) const;
+    // intersect_shape(object, ray, ·, counters) as a shape_of.
+    template <class Counters>
+    auto shape_of(const Object& object, const Ray& ray, Counters& counters) const;
+    // The roots of up to four of a leaf's spheres, from slot `first` on (leaf_shape_hit).
+    struct LeafRoots {
+        std::uint32_t first = ~0u - 4;
+        SphereRoots roots[4];
+    };
+    template <class Counters>
+    ShapeHit leaf_shape_hit(std::uint32_t slot, const Ray& ray, Real t_max, LeafRoots& roots,
+                            Counters& counters) const;
+    // The eight-wide BVH's leaf [begin, end) for one ray: visit(index, object, t_max, shape_of)
+    // for each of its objects in slot order, until one returns true (then true).
+    template <class Counters, class Visit>
+    bool visit_leaf(const Ray& ray, std::uint32_t begin, std::uint32_t end, Real& t_max,
+                    Counters& counters, Visit&& visit) const;
     // A closest-hit query: its best hit so far, and the tie rule (world.cpp), the same for a
     // single ray and a packet's.
     struct Closest {
@@ -176,11 +193,12 @@ class World {
     };
     // Starts `query` (t_max, skip set) on the unbounded objects; the limit for the structure.
     template <class Counters> Real begin_closest(Closest& query, Counters& counters) const;
-    template <class Counters>
+    template <class ShapeOf>
     void consider(Closest& query, std::uint32_t index, const Object& object,
-                  Counters& counters) const;
-    // The bounded objects the ray may meet, through the structure: visit(index, object, t_max)
-    // as the structure's visitor (accel.h); with the four-wide BVH, from leaf_objects_.
+                  const ShapeOf& shape_of) const;
+    // The bounded objects the ray may meet, through the structure: visit(index, object, t_max,
+    // shape_of) as the structure's visitor (accel.h) with the object's shape_of; with the
+    // eight-wide BVH, from leaf_objects_ (visit_leaf).
     template <class Counters, class Visit>
     void traverse(const Ray& ray, Real& t_max, Counters& counters, Visit&& visit) const;
     template <class Counters>
@@ -188,9 +206,9 @@ class World {
     template <class Counters>
     void closest_packet(std::span<const Ray> rays, Hit* hits, Counters& counters) const;
     // Whether object `object` (other than `skip`) is hit in (0, t_max) and `blocks` it.
-    template <class Counters, class Blocks>
-    bool blocks_ray(const Ray& ray, const LazySlab& slab, Real t_max, std::uint32_t skip,
-                    std::uint32_t index, const Object& object, bool box_tested, Counters& counters,
+    template <class ShapeOf, class Blocks>
+    bool blocks_ray(const LazySlab& slab, Real t_max, std::uint32_t skip, std::uint32_t index,
+                    const Object& object, bool box_tested, const ShapeOf& shape_of,
                     const Blocks& blocks) const;
     // Whether an object other than `skip` for which `blocks(object)` holds is hit in (0, t_max).
     template <class Counters, class Blocks>
@@ -215,13 +233,19 @@ class World {
     std::vector<std::uint32_t> unbounded_; // planes: tested by every ray
     std::vector<std::uint32_t> bounded_;   // accelerator item → object index
     Accelerator accel_;
-    // With the four-wide BVH, its leaves' objects in its slot order, so that the objects a leaf
+    // With the eight-wide BVH, its leaves' objects in its slot order, so that the objects a leaf
     // names are adjacent in memory (copies of objects_[index]; empty for other structures).
     struct LeafObject {
         Object object;
         std::uint32_t index;
     };
     std::vector<LeafObject> leaf_objects_;
+    // Beside leaf_objects_, for the spheres placed without rotation or shear: their offsets and
+    // inverse scales in structure of arrays (inverse_scale 0: not such a sphere), so that a
+    // leaf's spheres are tested four at a time (sphere_roots4, trace/shapes/sphere.h).
+    struct LeafSpheres {
+        std::vector<Real> x, y, z, inverse_scale;
+    } leaf_spheres_;
     void order_leaves();
     double build_seconds_ = 0;
     bool counting_ = false;

@@ -50,7 +50,7 @@ class Accelerator {
     Accelerator refitted(std::vector<Bounds> items) const;
 
     AccelKind kind() const { return static_cast<AccelKind>(structure_.index()); }
-    // The four-wide BVH, which alone traverses packets of rays; null for the other kinds.
+    // The eight-wide BVH, which alone traverses packets of rays; null for the other kinds.
     const WideBvh* wide_bvh() const { return std::get_if<WideBvh>(&structure_); }
     std::size_t memory_bytes() const;
     std::size_t node_count() const;

@@ -8,7 +8,7 @@
 
 namespace glint {
 
-// bvh is the four-wide SIMD hierarchy (wide_bvh.h); bvh2 the binary one it is collapsed from
+// bvh is the eight-wide SIMD hierarchy (wide_bvh.h); bvh2 the binary one it is collapsed from
 // (binary_bvh.h), kept by name as the teaching baseline.
 enum class AccelKind : std::uint8_t { list, bvh, spheres, grid, kd, bvh2 };
 

@@ -11,8 +11,8 @@ struct NoCounters {
 };
 
 struct TraversalCounters {
-    // Nodes visited: boxes (bvh2), spheres, cells or kd nodes; a four-wide node (bvh) counts
-    // once for its four boxes, and once per ray of a packet that tests it.
+    // Nodes visited: boxes (bvh2), spheres, cells or kd nodes; an eight-wide node (bvh) counts
+    // once for its eight boxes, and once per ray of a packet that tests it.
     std::uint64_t nodes = 0;
     std::uint64_t primitives = 0; // objects (or triangles) whose exact test ran
 
