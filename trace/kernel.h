@@ -22,7 +22,9 @@ std::optional<Kernel> kernel_named(std::string_view name);
 std::vector<Kernel> available_kernels();
 
 // The kernel in use: the widest available, unless the environment variable GLINT_KERNEL names
-// another (sse or avx2; one the processor lacks is an error at start-up, not a crash later).
+// another (sse or avx2). glint's commands refuse a name that is not a kernel, or one the
+// processor lacks, before any work (exit 2: app/main.cpp); elsewhere (the test and benchmark
+// programs run directly) such a name leaves the widest in use.
 Kernel active_kernel();
 
 // What active_kernel() would be for GLINT_KERNEL = `requested` (empty: unset); an error message
