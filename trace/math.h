@@ -22,6 +22,16 @@
 #define GLINT_PRECISION f32
 #endif
 
+// The SIMD kernels (the BVH's box tests, a mesh's triangle blocks, a leaf's spheres) are written
+// for float with SSE, which every x86-64 processor has; in double, or elsewhere, the same
+// arithmetic runs lane by lane.
+#if defined(__SSE2__) && !GLINT_DOUBLE
+#include <immintrin.h>
+#define GLINT_SIMD 1
+#else
+#define GLINT_SIMD 0
+#endif
+
 namespace glint {
 inline namespace GLINT_PRECISION {
 

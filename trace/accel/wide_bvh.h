@@ -16,13 +16,6 @@
 #include <span>
 #include <vector>
 
-#if defined(__SSE2__) && !GLINT_DOUBLE
-#include <immintrin.h>
-#define GLINT_WIDE_BVH_SSE 1
-#else
-#define GLINT_WIDE_BVH_SSE 0
-#endif
-
 namespace glint {
 inline namespace GLINT_PRECISION {
 
@@ -40,12 +33,20 @@ struct alignas(64) WideBvhNode {
     std::uint8_t count[kBvhWidth];  // leaf: its number of items; inner child or empty lane: 0
 };
 
+// Asks for every cache line of [p, p + bytes) to be fetched.
+inline void prefetch_bytes(const void* p, std::size_t bytes) {
+    const auto first = reinterpret_cast<std::uintptr_t>(p) & ~std::uintptr_t{63};
+    const auto last = reinterpret_cast<std::uintptr_t>(p) + bytes - 1;
+    for (std::uintptr_t line = first; line <= last; line += 64)
+        __builtin_prefetch(reinterpret_cast<const void*>(line));
+}
+
 // SlabRay::clip's enlargement of the far end.
 inline constexpr Real kSlabWiden = 1.0_r + 2.0_r * gamma(3);
 
 struct WideRay;
 struct PacketRays;
-#if GLINT_WIDE_BVH_SSE
+#if GLINT_SIMD
 // The AVX2 kernel (defined below): WideRay::enter_sse's and PacketRays::enter_sse's operations,
 // in the same order, eight lanes an instruction. Only functions marked for AVX2 are compiled
 // for it (these, and the traversals that inline them: WideBvh's *_avx2), so that nothing they
@@ -78,7 +79,7 @@ struct WideRay {
     // same with eight.
     [[gnu::always_inline]] unsigned enter_sse(const WideBvhNode& n, Real t_max,
                                               Real (&t_near)[kBvhWidth]) const {
-#if GLINT_WIDE_BVH_SSE
+#if GLINT_SIMD
         unsigned mask = 0;
         for (int h = 0; h < kBvhWidth; h += 4) {
             __m128 t_in = _mm_setzero_ps(), t_out = _mm_set1_ps(kInfinity);
@@ -144,7 +145,7 @@ struct PacketRays {
         Mask met = 0;
         for (int g = 0; g < kMaxPacket; g += 4) {
             if (((active >> g) & 15) == 0) continue;
-#if GLINT_WIDE_BVH_SSE
+#if GLINT_SIMD
             __m128 t_in = _mm_setzero_ps(), t_out = _mm_set1_ps(kInfinity);
             for (int a = 0; a < 3; ++a) {
                 const __m128 o = _mm_load_ps(&origin[a][g]);
@@ -181,7 +182,7 @@ struct PacketRays {
     }
 };
 
-#if GLINT_WIDE_BVH_SSE
+#if GLINT_SIMD
 [[gnu::target("avx2")]] inline unsigned enter_avx2(const WideRay& ray, const WideBvhNode& n,
                                                    Real t_max, Real (&t_near)[kBvhWidth]) {
     static_assert(kBvhWidth == 8);
@@ -258,7 +259,7 @@ class WideBvh {
     void traverse_leaves(
         const Ray& ray, Real& t_max, Counters& counters, VisitLeaf&& visit,
         PrefetchLeaf&& prefetch_leaf = [](std::uint32_t) {}) const {
-#if GLINT_WIDE_BVH_SSE
+#if GLINT_SIMD
         if (active_kernel() == Kernel::avx2)
             return traverse_leaves_avx2(ray, t_max, counters, visit, prefetch_leaf);
 #endif
@@ -290,7 +291,7 @@ class WideBvh {
     template <class Counters, class VisitLeaf>
     void traverse_packet(const Ray* rays, int count, const Real* t_max, Counters& counters,
                          VisitLeaf&& visit) const {
-#if GLINT_WIDE_BVH_SSE
+#if GLINT_SIMD
         if (active_kernel() == Kernel::avx2)
             return traverse_packet_avx2(rays, count, t_max, counters, visit);
 #endif
@@ -298,7 +299,7 @@ class WideBvh {
     }
 
   private:
-#if GLINT_WIDE_BVH_SSE
+#if GLINT_SIMD
     // The traversals compiled for AVX2, their box tests inlined (enter_avx2).
     template <class Counters, class VisitLeaf, class PrefetchLeaf>
     [[gnu::target("avx2")]] void traverse_leaves_avx2(const Ray& ray, Real& t_max,
@@ -333,7 +334,7 @@ class WideBvh {
             const WideBvhNode& n = nodes_[node];
             Real t_near[kBvhWidth];
             unsigned mask;
-#if GLINT_WIDE_BVH_SSE
+#if GLINT_SIMD
             if constexpr (kAvx2)
                 mask = enter_avx2(wide, n, t_max, t_near);
             else
@@ -401,7 +402,7 @@ class WideBvh {
                     if (n.child[k] == kEmptyChild) continue;
                     Real t = kInfinity;
                     Mask met;
-#if GLINT_WIDE_BVH_SSE
+#if GLINT_SIMD
                     if constexpr (kAvx2)
                         met = enter_avx2(packet, n, k, active, t);
                     else
@@ -433,9 +434,7 @@ class WideBvh {
     }
 
     void prefetch(std::uint32_t node) const {
-        const char* p = reinterpret_cast<const char*>(&nodes_[node]);
-        for (std::size_t line = 0; line < sizeof(WideBvhNode); line += 64)
-            __builtin_prefetch(p + line);
+        prefetch_bytes(&nodes_[node], sizeof(WideBvhNode));
     }
 
     // The next waiting child the ray still reaches before t_max, if any.

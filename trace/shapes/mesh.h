@@ -111,7 +111,7 @@ inline TriangleHit intersect_triangle(Vec3 p0, Vec3 p1, Vec3 p2, const Ray& ray)
 [[gnu::always_inline]] inline void intersect_triangles(const TriangleBlock& block,
                                                        std::uint32_t lanes, const WatertightRay& r,
                                                        TriangleHit (&hits)[kTriangleLanes]) {
-#if GLINT_WIDE_BVH_SSE
+#if GLINT_SIMD
     const int axis[3] = {r.kx, r.ky, r.kz};
     __m128 x[3], y[3], z[3]; // corner k relative to the origin, sheared: x, y; and along kz
     const __m128 sx = _mm_set1_ps(r.sx), sy = _mm_set1_ps(r.sy);
@@ -189,10 +189,7 @@ inline Mesh prepare_mesh(const TriangleMesh& given) {
 
 // Asks for the first block of the leaf at slot `first` (its 144 bytes) to be fetched.
 inline void prefetch_block(const Mesh& mesh, std::uint32_t first) {
-    const char* p = reinterpret_cast<const char*>(&mesh.blocks[first / kTriangleLanes]);
-    for (std::size_t line = 0; line < sizeof(TriangleBlock); line += 64)
-        __builtin_prefetch(p + line);
-    __builtin_prefetch(p + sizeof(TriangleBlock) - 1);
+    prefetch_bytes(&mesh.blocks[first / kTriangleLanes], sizeof(TriangleBlock));
 }
 
 // The triangles in slots [begin, end) (begin a multiple of kTriangleLanes) for one ray, a block
@@ -200,9 +197,10 @@ inline void prefetch_block(const Mesh& mesh, std::uint32_t first) {
 // lower triangle index (`triangle(slot)`). The one test of intersect_mesh and
 // intersect_mesh_packet.
 template <class Counters, class TriangleOf>
-[[gnu::always_inline]] inline void consider_triangles(const Mesh& mesh, std::uint32_t begin, std::uint32_t end,
-                        const TriangleOf& triangle_of, const WatertightRay& ray, Real t_max,
-                        ShapeHit& best, Counters& counters) {
+[[gnu::always_inline]] inline void
+consider_triangles(const Mesh& mesh, std::uint32_t begin, std::uint32_t end,
+                   const TriangleOf& triangle_of, const WatertightRay& ray, Real t_max,
+                   ShapeHit& best, Counters& counters) {
     for (std::uint32_t first = begin; first < end; first += kTriangleLanes) {
         const std::uint32_t lanes = std::min(kTriangleLanes, end - first);
         TriangleHit hits[kTriangleLanes];

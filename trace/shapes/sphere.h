@@ -6,10 +6,6 @@
 #include <cmath>
 #include <utility>
 
-#if defined(__SSE2__) && !GLINT_DOUBLE
-#include <immintrin.h>
-#endif
-
 namespace glint {
 inline namespace GLINT_PRECISION {
 
@@ -58,7 +54,7 @@ inline ShapeHit intersect_sphere(const Ray& ray, Real t_max) {
 // of each array from `first`, whatever lanes the caller uses.
 inline void sphere_roots4(const Ray& ray, const Real* x, const Real* y, const Real* z,
                           const Real* inverse_scale, SphereRoots (&roots)[4]) {
-#if defined(__SSE2__) && !GLINT_DOUBLE
+#if GLINT_SIMD
     const __m128 inv = _mm_loadu_ps(inverse_scale);
     const __m128 ox = _mm_mul_ps(_mm_sub_ps(_mm_set1_ps(ray.origin.x), _mm_loadu_ps(x)), inv);
     const __m128 oy = _mm_mul_ps(_mm_sub_ps(_mm_set1_ps(ray.origin.y), _mm_loadu_ps(y)), inv);
