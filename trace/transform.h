@@ -47,6 +47,16 @@ struct Transform {
         }
         return {inverse_linear * ray.origin + inverse_offset, inverse_linear * ray.direction};
     }
+    // to_object as (p − offset)·inverse_scale (and d·inverse_scale) with the same rounding, for a
+    // transform without rotation or shear; false for a general one. Subtracting +0 and
+    // multiplying by 1 are exact, so an identity is offset +0 (its stored offset may be −0, and
+    // o − (−0) turns a −0 coordinate into +0), scale 1, and a translation scale 1.
+    bool as_offset_scale(Vec3& to_offset, Real& to_inverse_scale) const {
+        if (kind == TransformClass::general) return false;
+        to_offset = kind == TransformClass::identity ? Vec3(0.0_r) : offset;
+        to_inverse_scale = kind == TransformClass::uniform_scale ? inverse_scale : 1.0_r;
+        return true;
+    }
     Vec3 point_to_world(Vec3 p) const;
     // normalize(M⁻ᵀ n) for an object-space normal n.
     Vec3 normal_to_world(Vec3 n) const;

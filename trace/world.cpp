@@ -105,19 +105,18 @@ void World::order_leaves() {
     leaf_objects_.reserve(bvh->items().size());
     for (const std::uint32_t item : bvh->items())
         leaf_objects_.push_back({objects_[bounded_[item]], bounded_[item]});
-    // Spheres placed without rotation or shear map to object space as (p − offset)·inverse_scale
-    // (Transform::to_object; 1 for identity and translation, which then maps exactly as they
-    // do). Three entries of padding, so that four may be read from any slot.
+    // Three entries of padding, so that four may be read from any slot.
     const std::size_t padded = leaf_objects_.size() + 3;
     leaf_spheres_.x.assign(padded, 0), leaf_spheres_.y.assign(padded, 0);
     leaf_spheres_.z.assign(padded, 0), leaf_spheres_.inverse_scale.assign(padded, 0);
     for (std::size_t slot = 0; slot < leaf_objects_.size(); ++slot) {
         const Object& o = leaf_objects_[slot].object;
-        if (o.shape != ShapeKind::sphere || o.transform.kind == TransformClass::general) continue;
-        const bool scaled = o.transform.kind == TransformClass::uniform_scale;
-        leaf_spheres_.x[slot] = o.transform.offset.x, leaf_spheres_.y[slot] = o.transform.offset.y;
-        leaf_spheres_.z[slot] = o.transform.offset.z;
-        leaf_spheres_.inverse_scale[slot] = scaled ? o.transform.inverse_scale : 1.0_r;
+        Vec3 offset;
+        Real inverse_scale;
+        if (o.shape != ShapeKind::sphere || !o.transform.as_offset_scale(offset, inverse_scale))
+            continue;
+        leaf_spheres_.x[slot] = offset.x, leaf_spheres_.y[slot] = offset.y;
+        leaf_spheres_.z[slot] = offset.z, leaf_spheres_.inverse_scale[slot] = inverse_scale;
     }
 }
 
@@ -176,10 +175,10 @@ ShapeHit World::leaf_shape_hit(std::uint32_t slot, const Ray& ray, Real t_max, L
     const Real* inverse_scale = leaf_spheres_.inverse_scale.data();
     if (inverse_scale[slot] == 0)
         return intersect_shape(leaf_objects_[slot].object, ray, t_max, counters);
-    if (slot < roots.first || slot >= roots.first + 4) {
+    if (!roots.holds(slot)) {
         sphere_roots4(ray, &leaf_spheres_.x[slot], &leaf_spheres_.y[slot], &leaf_spheres_.z[slot],
                       &inverse_scale[slot], roots.roots);
-        roots.first = slot;
+        roots.first = slot, roots.end = slot + 4;
     }
     return sphere_hit(roots.roots[slot - roots.first], t_max);
 }

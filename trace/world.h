@@ -172,8 +172,9 @@ class World {
     auto shape_of(const Object& object, const Ray& ray, Counters& counters) const;
     // The roots of up to four of a leaf's spheres, from slot `first` on (leaf_shape_hit).
     struct LeafRoots {
-        std::uint32_t first = ~0u - 4;
+        std::uint32_t first = 0, end = 0; // the slots `roots` holds: none yet
         SphereRoots roots[4];
+        bool holds(std::uint32_t slot) const { return slot >= first && slot < end; }
     };
     template <class Counters>
     ShapeHit leaf_shape_hit(std::uint32_t slot, const Ray& ray, Real t_max, LeafRoots& roots,
