@@ -32,19 +32,9 @@ Kernel active() {
 
 } // namespace
 
-std::string_view name_of(Kernel kernel) {
-    return kernel == Kernel::avx2 ? "avx2" : "sse";
-}
-
-std::optional<Kernel> kernel_named(std::string_view name) {
-    for (const Kernel k : {Kernel::sse, Kernel::avx2})
-        if (name == name_of(k)) return k;
-    return std::nullopt;
-}
-
 std::vector<Kernel> available_kernels() {
     std::vector<Kernel> kernels;
-    for (const Kernel k : {Kernel::sse, Kernel::avx2})
+    for (const Kernel k : all_values<Kernel>())
         if (processor_has(k)) kernels.push_back(k);
     return kernels;
 }
@@ -52,8 +42,13 @@ std::vector<Kernel> available_kernels() {
 KernelChoice choose_kernel(std::string_view requested) {
     const Kernel widest = available_kernels().back();
     if (requested.empty()) return {widest, {}};
-    const std::optional<Kernel> named = kernel_named(requested);
-    if (!named) return {widest, "is not a kernel (sse, avx2)"};
+    const std::optional<Kernel> named = from_name<Kernel>(requested);
+    if (!named) {
+        std::string names;
+        for (const std::string& name : all_names<Kernel>())
+            names += (names.empty() ? "" : ", ") + name;
+        return {widest, "is not a kernel (" + names + ")"};
+    }
     if (!processor_has(*named)) return {widest, "is not supported by this processor"};
     return {*named, {}};
 }

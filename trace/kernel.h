@@ -4,7 +4,9 @@
 // query exactly alike (tests/kernel_test.cpp); only the speed differs.
 #pragma once
 
-#include <optional>
+#include "trace/names.h"
+
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -15,8 +17,7 @@ enum class Kernel : unsigned char {
     avx2, // 256-bit: an eight-wide node's boxes, or eight rays of a packet, an instruction
 };
 
-std::string_view name_of(Kernel kernel);
-std::optional<Kernel> kernel_named(std::string_view name);
+template <> struct EnumNames<Kernel> { static constexpr auto names = name_table("sse", "avx2"); };
 
 // The kernels this processor can run, narrowest first.
 std::vector<Kernel> available_kernels();
@@ -31,7 +32,7 @@ Kernel active_kernel();
 // for a name that is not a kernel or one the processor lacks.
 struct KernelChoice {
     Kernel kernel;
-    std::string_view problem; // empty when the choice stands
+    std::string problem; // empty when the choice stands
 };
 KernelChoice choose_kernel(std::string_view requested);
 
