@@ -96,6 +96,9 @@ TEST_P(AccelTest, AgreesExactlyWithTheListOnAMillionRandomRays) {
         Scene scene = random_scene(seed, 10 + static_cast<int>(seed % 7) * 15);
         scene.camera.eye = {0, 0, 0};
         scene.camera.look_at = {0, 0, -1};
+        scene.materials.push_back(scene.materials[0]);
+        scene.materials.back().transmission = 0.5f;
+        for (std::size_t i = 0; i < scene.objects.size(); i += 3) scene.objects[i].material = 1;
         const World list(scene, AccelKind::list);
         const World other(scene, kind);
         for (int k = 0; k < kRaysPerScene; ++k, ++rays) {
@@ -111,21 +114,31 @@ TEST_P(AccelTest, AgreesExactlyWithTheListOnAMillionRandomRays) {
             const float t_max = expected.found() ? expected.t * (k % 2 ? 0.5f : 2.0f) : 20.0f;
             ASSERT_EQ(other.occluded(ray, t_max), list.occluded(ray, t_max))
                 << name_of(kind) << " scene " << seed;
+            // The same for opaque objects alone (a third of them are glass), and whether glass
+            // lies on the way where nothing opaque does.
+            bool glass = false, list_glass = false;
+            const bool opaque = other.opaque_between(ray, t_max, kNoObject, glass);
+            ASSERT_EQ(opaque, list.opaque_between(ray, t_max, kNoObject, list_glass))
+                << name_of(kind) << " scene " << seed << " ray " << k;
+            if (!opaque) {
+                ASSERT_EQ(glass, list_glass) << name_of(kind) << " scene " << seed;
+            }
         }
     }
     EXPECT_EQ(rays, 250u * kRaysPerScene);
     EXPECT_GT(hits, rays / 10) << "too few hits to mean much";
 }
 
-// Packets (World::intersect_packet, occluded_packet): every ray of a packet gets exactly the
-// list's answer, for coherent packets (a 4×4 block of camera rays, shadow rays from scattered
-// points towards one light) and incoherent ones (random rays), partly filled ones included:
-// about a million rays in 125,000 packets over 250 scenes for the BVH.
+// Packets (World::intersect_packet, occluded_packet, opaque_between_packet): every ray of a
+// packet gets exactly the list's answer, for coherent packets (a 4×4 block of camera rays,
+// shadow rays from scattered points towards one light) and incoherent ones (random rays),
+// partly filled ones included: about a million rays in 125,000 packets over 250 scenes for the
+// BVH, in which a third of the objects are glass (for opaque_between).
 TEST_P(AccelTest, PacketsAgreeExactlyWithTheListRayByRay) {
     const AccelKind kind = GetParam();
     std::mt19937 rng(99);
     std::uniform_real_distribution<float> u(-1, 1);
-    std::uint64_t rays = 0;
+    std::uint64_t rays = 0, glass_rays = 0;
     // The eight-wide BVH traverses packets; the other structures answer them ray by ray. Under the
     // sanitizers (test_scenes.h), fewer scenes.
     const unsigned scenes = kind == AccelKind::bvh ? (testing::kUnderSanitizers ? 50 : 250)
@@ -134,6 +147,9 @@ TEST_P(AccelTest, PacketsAgreeExactlyWithTheListRayByRay) {
         Scene scene = random_scene(seed, 10 + static_cast<int>(seed % 7) * 15);
         scene.camera.eye = {0, 0, 0};
         scene.camera.look_at = {0, 0, -1};
+        scene.materials.push_back(scene.materials[0]);
+        scene.materials.back().transmission = 0.5f;
+        for (std::size_t i = 0; i < scene.objects.size(); i += 3) scene.objects[i].material = 1;
         const World list(scene, AccelKind::list);
         const World other(scene, kind);
         for (int packet = 0; packet < 500; ++packet) {
@@ -159,10 +175,11 @@ TEST_P(AccelTest, PacketsAgreeExactlyWithTheListRayByRay) {
                 skips[r] = rng() % 4 == 0 ? static_cast<std::uint32_t>(rng() % 20) : kNoObject;
             }
             Hit hits[kMaxPacket];
-            bool blocked[kMaxPacket];
+            bool blocked[kMaxPacket], opaque[kMaxPacket], glass[kMaxPacket];
             const float t_max = packet % 3 == 1 ? 1.0f : 4 + 10 * (u(rng) + 1);
             other.intersect_packet({batch, count}, hits);
             other.occluded_packet({batch, count}, t_max, skips, blocked);
+            other.opaque_between_packet({batch, count}, t_max, skips, opaque, glass);
             for (std::size_t r = 0; r < count; ++r, ++rays) {
                 const Hit expected = list.intersect(batch[r]);
                 ASSERT_EQ(hits[r].object, expected.object)
@@ -171,10 +188,19 @@ TEST_P(AccelTest, PacketsAgreeExactlyWithTheListRayByRay) {
                 ASSERT_EQ(hits[r].primitive, expected.primitive) << "scene " << seed;
                 ASSERT_EQ(blocked[r], list.occluded(batch[r], t_max, skips[r]))
                     << "scene " << seed << " packet " << packet << " ray " << r;
+                bool list_glass = false;
+                ASSERT_EQ(opaque[r], list.opaque_between(batch[r], t_max, skips[r], list_glass))
+                    << "scene " << seed << " packet " << packet << " ray " << r;
+                // Whether glass lies on the ray is asked only where nothing opaque does.
+                if (!opaque[r]) {
+                    ASSERT_EQ(glass[r], list_glass) << "scene " << seed;
+                }
+                glass_rays += glass[r] && !opaque[r];
             }
         }
     }
     EXPECT_GT(rays, scenes * 500 * 4);
+    EXPECT_GT(glass_rays, rays / 100) << "too few rays through glass alone to mean much";
 }
 
 TEST_P(AccelTest, RendersAreByteIdenticalToTheList) {

@@ -296,15 +296,15 @@ bool World::any(const Ray& ray, Real t_max, std::uint32_t skip, Counters& counte
     return found;
 }
 
-template <class Counters>
+template <class Counters, class Blocks>
 void World::any_packet(std::span<const Ray> rays, Real t_max, const std::uint32_t* skips,
-                       bool* found, Counters& counters) const {
+                       bool* found, Counters& counters, const Blocks& blocks) const {
     assert(rays.size() <= kMaxPacket);
-    const auto every = [](std::uint32_t) { return true; };
     const WideBvh* bvh = accel_.wide_bvh();
     if (!bvh) {
         for (std::size_t r = 0; r < rays.size(); ++r)
-            found[r] = any(rays[r], t_max, skips[r], counters, every);
+            found[r] = any(rays[r], t_max, skips[r], counters,
+                           [&](std::uint32_t object) { return blocks(r, object); });
         return;
     }
     // The unbounded objects ray by ray; the rays they leave unanswered go through the tree.
@@ -318,7 +318,8 @@ void World::any_packet(std::span<const Ray> rays, Real t_max, const std::uint32_
         for (const std::uint32_t object : unbounded_) {
             counters.primitive();
             if ((found[r] = blocks_ray(slab[r], t_max, skips[r], object, objects_[object], false,
-                                       shape_of(objects_[object], rays[r], counters), every)))
+                                       shape_of(objects_[object], rays[r], counters),
+                                       [&](std::uint32_t index) { return blocks(r, index); })))
                 break;
         }
         if (found[r]) continue;
@@ -334,7 +335,7 @@ void World::any_packet(std::span<const Ray> rays, Real t_max, const std::uint32_
                        rays[r], begin, end, limit, counters,
                        [&](std::uint32_t index, const Object& object, Real&, const auto& shape) {
                            return blocks_ray(slab[r], t_max, skips[r], index, object, false, shape,
-                                             every);
+                                             [&](std::uint32_t i) { return blocks(r, i); });
                        });
         });
 }
@@ -373,9 +374,23 @@ void World::intersect_packet(std::span<const Ray> rays, Hit* hits) const {
 
 void World::occluded_packet(std::span<const Ray> rays, Real t_max, const std::uint32_t* skips,
                             bool* occluded) const {
-    if (counting_) return any_packet(rays, t_max, skips, occluded, counters_.local());
+    const auto every = [](std::size_t, std::uint32_t) { return true; };
+    if (counting_) return any_packet(rays, t_max, skips, occluded, counters_.local(), every);
     NoCounters none;
-    any_packet(rays, t_max, skips, occluded, none);
+    any_packet(rays, t_max, skips, occluded, none, every);
+}
+
+void World::opaque_between_packet(std::span<const Ray> rays, Real t_max, const std::uint32_t* skips,
+                                  bool* opaque, bool* transmissive) const {
+    std::fill_n(transmissive, rays.size(), false);
+    const auto blocks = [&](std::size_t r, std::uint32_t object) {
+        const bool blocking = material(object).transmission == 0;
+        transmissive[r] |= !blocking;
+        return blocking;
+    };
+    if (counting_) return any_packet(rays, t_max, skips, opaque, counters_.local(), blocks);
+    NoCounters none;
+    any_packet(rays, t_max, skips, opaque, none, blocks);
 }
 
 Hit World::intersect_one(std::uint32_t object, const Ray& ray, Real t_max) const {

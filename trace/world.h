@@ -128,6 +128,10 @@ class World {
     void intersect_packet(std::span<const Ray> rays, Hit* hits) const;
     void occluded_packet(std::span<const Ray> rays, Real t_max, const std::uint32_t* skips,
                          bool* occluded) const;
+    // The same for opaque_between(rays[i], t_max, skips[i], transmissive[i]) (a tile's shadow
+    // rays in a scene with glass).
+    void opaque_between_packet(std::span<const Ray> rays, Real t_max, const std::uint32_t* skips,
+                               bool* opaque, bool* transmissive) const;
     // The first hit on one object alone, in (0, t_max).
     Hit intersect_one(std::uint32_t object, const Ray& ray, Real t_max = kInfinity) const;
     // The same for a packet of up to kMaxPacket coherent rays (an item buffer's block of pixels
@@ -215,9 +219,10 @@ class World {
     template <class Counters, class Blocks>
     bool any(const Ray& ray, Real t_max, std::uint32_t skip, Counters& counters,
              const Blocks& blocks) const;
-    template <class Counters>
+    // any() for a packet; blocks(i, object) for ray i.
+    template <class Counters, class Blocks>
     void any_packet(std::span<const Ray> rays, Real t_max, const std::uint32_t* skips, bool* found,
-                    Counters& counters) const;
+                    Counters& counters, const Blocks& blocks) const;
 
     // The camera-relative part: objects, lights and bounds; the structure is the caller's.
     struct CameraRelative {};
