@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace glint {
@@ -157,6 +158,54 @@ TEST(Reflection, AReflectionRayThatEscapesAddsTheBackground) {
     const RenderResult r = render(World(scene));
     EXPECT_EQ(r.bytes().rgb[0], std::lround(255 * 0.5 * 0.2));
     EXPECT_EQ(r.bytes().rgb[2], std::lround(255 * 0.5 * 0.6));
+}
+
+// A group of pixels' shadow verdicts cast ahead in packets (TileLighting), through glass too,
+// shade every pixel exactly as its shadow rays cast one at a time: the same colour to the bit,
+// the same rays, cut-off weight, depth and path key, on every shipped scene (two with glass)
+// and a glass sphere in a mirror box whose trees reach kMaxTreeRays. The whole image is one
+// group, so that most packets are full.
+TEST(TileLighting, ShadesEveryPixelExactlyAsShadowRaysCastOneAtATime) {
+    std::vector<std::pair<std::string, Scene>> scenes;
+    for (const char* name : testing::kShippedScenes)
+        scenes.emplace_back(name, testing::shipped(name, 40, 30));
+    scenes.emplace_back("budget", parse_scene(R"({
+        "camera": {"eye": [0, 0, 3], "look_at": [0, 0, 0], "width": 6, "height": 4},
+        "lights": [{"position": [0, 2, 1]}, {"position": [0, 0, 0.5]}],
+        "materials": {"g": {"reflectivity": 0.5, "transmission": 0.5, "ior": 1.5},
+                      "m": {"reflectivity": 1}},
+        "render": {"max_depth": 64, "min_weight": 0},
+        "objects": [{"shape": "sphere", "material": "g"},
+                    {"shape": "box", "material": "m", "transform": [{"scale": 5}]}]})",
+                                              "budget.json"));
+    for (const auto& [name, scene] : scenes) {
+        const World world(scene, AccelKind::bvh); // packets: the eight-wide BVH's traversal
+        std::vector<Ray> rays;
+        std::vector<Hit> hits;
+        for (int y = 0; y < world.camera().height(); ++y)
+            for (int x = 0; x < world.camera().width(); ++x) {
+                rays.push_back(world.camera().ray(x, y));
+                hits.push_back(world.intersect(rays.back()));
+            }
+        const TileLighting lighting(world, rays, hits);
+        std::size_t through_glass = 0; // verdicts that leave shade() glass to follow
+        for (std::size_t k = 0; k < rays.size(); ++k) {
+            const Real* light = lighting.at(k).light;
+            through_glass += std::count(light, light + world.lights().size(), kThroughGlass);
+            const PixelSample alone = shade_pixel(world, rays[k], hits[k]);
+            const PixelSample ahead = shade_pixel(world, rays[k], hits[k], lighting.at(k));
+            ASSERT_EQ(ahead.colour, alone.colour) << name << " pixel " << k;
+            ASSERT_EQ(ahead.omitted_weight, alone.omitted_weight) << name << " pixel " << k;
+            ASSERT_EQ(ahead.path_key, alone.path_key) << name << " pixel " << k;
+            ASSERT_EQ(ahead.depth, alone.depth) << name << " pixel " << k;
+            ASSERT_EQ(ahead.rays.shadow, alone.rays.shadow) << name << " pixel " << k;
+            ASSERT_EQ(ahead.rays.reflection, alone.rays.reflection) << name << " pixel " << k;
+            ASSERT_EQ(ahead.rays.transmission, alone.rays.transmission) << name;
+        }
+        if (name == "glass" || name == "budget") {
+            EXPECT_GT(through_glass, 0u) << name;
+        }
+    }
 }
 
 } // namespace

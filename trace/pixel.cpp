@@ -27,23 +27,28 @@ PixelSample shade_pixel(const World& world, const Ray& ray, const Hit& primary,
 }
 
 TileLighting::TileLighting(const World& world, std::span<const Ray> rays, std::span<const Hit> hits)
-    : surfaces_(hits.size()), lights_(world.lights().size()),
-      known_(!world.geometry()->transmissive && lights_ > 0) {
+    : surfaces_(hits.size()), lights_(world.lights().size()), known_(lights_ > 0) {
     for (std::size_t k = 0; k < hits.size(); ++k)
         if (hits[k].found()) surfaces_[k] = world.surface(rays[k], hits[k]);
     if (!known_) return;
     light_.assign(hits.size() * lights_, 0);
+    const bool glass = world.geometry()->transmissive;
     for (std::size_t j = 0; j < lights_; ++j) {
         const Light& light = world.lights()[j];
         Ray shadow[kMaxPacket];
         std::uint32_t skip[kMaxPacket];
         std::size_t pixel[kMaxPacket];
-        bool blocked[kMaxPacket];
+        bool blocked[kMaxPacket], crossed[kMaxPacket] = {};
         std::size_t count = 0;
         const auto cast = [&] {
-            world.occluded_packet({shadow, count}, 1.0_r, skip, blocked);
+            if (glass)
+                world.opaque_between_packet({shadow, count}, 1.0_r, skip, blocked, crossed);
+            else
+                world.occluded_packet({shadow, count}, 1.0_r, skip, blocked);
             for (std::size_t r = 0; r < count; ++r)
-                light_[pixel[r] * lights_ + j] = blocked[r] ? 0.0_r : 1.0_r;
+                light_[pixel[r] * lights_ + j] = blocked[r]   ? 0.0_r
+                                                 : crossed[r] ? kThroughGlass
+                                                              : 1.0_r;
             count = 0;
         };
         for (std::size_t k = 0; k < hits.size(); ++k) {

@@ -31,9 +31,11 @@ PixelSample shade_pixel(const World& world, const Ray& ray, const Hit& primary,
                         const PreparedHit& prepared = {}, RayRecorder* recorder = nullptr);
 
 // The primary hits of a tile (or any group of pixels whose neighbours are close), prepared for
-// shading: every surface, and in a scene without transmission every light's shadow verdict,
-// cast in packets of kMaxPacket rays towards that light (World::occluded_packet), taken in the
-// order given. The verdicts are the ones shade() would find ray by ray, bit for bit.
+// shading: every surface, and every light's shadow verdict, cast in packets of kMaxPacket rays
+// towards that light (World::occluded_packet; in a scene with glass
+// World::opaque_between_packet, which leaves only the rays that meet glass and nothing opaque for
+// shade() to follow), taken in the order given. The verdicts are the ones shade() would find ray
+// by ray, bit for bit.
 class TileLighting {
   public:
     TileLighting(const World& world, std::span<const Ray> rays, std::span<const Hit> hits);
@@ -43,7 +45,7 @@ class TileLighting {
 
   private:
     std::vector<SurfacePoint> surfaces_;
-    std::vector<Real> light_; // pixel k, light j at k·lights + j
+    std::vector<Real> light_; // pixel k, light j at k·lights + j (1, 0 or kThroughGlass)
     std::size_t lights_ = 0;
     bool known_ = false;
 };

@@ -40,22 +40,11 @@ std::optional<TexelSample> texture_at(const World& world, const Phong& m, const 
     return sample_texture(*m.texture, mesh_uv(*mesh, hit.primitive, hit.u, hit.v));
 }
 
-// The fraction of a light's colour that reaches a surface from `light` (docs/ARCHITECTURE.md,
-// "Conventions": shadows): 1 when nothing lies on the open segment, else the product of the
-// transmissions of every surface the segment crosses (0 at the first opaque one). Shadow rays
-// are not bent; each piece of the segment between crossings is one shadow ray. Without a
-// transmissive material in the scene, one any-hit query answers it; with one, an any-hit query
-// for opaque objects first, so that only segments that meet glass and nothing opaque are
-// followed crossing by crossing.
-Real light_through(const World& world, const SurfacePoint& surface, Vec3 light, RayCounts& counts) {
-    const Ray shadow = shadow_ray(surface, light);
-    ++counts.shadow;
-    if (!world.geometry()->transmissive)
-        return world.occluded(shadow, 1.0_r, surface.skip) ? 0.0_r : 1.0_r;
-    bool glass = false;
-    if (world.opaque_between(shadow, 1.0_r, surface.skip, glass)) return 0;
-    if (!glass) return 1;
-    Vec3 from = shadow.origin;
+// The fraction of a light's colour that passes the glass on the shadow ray from `surface` to
+// `light`, on which nothing opaque lies: the product of the transmissions of the surfaces it
+// crosses, each piece between crossings one more shadow ray (the first one counted already).
+Real through_glass(const World& world, const SurfacePoint& surface, Vec3 light, RayCounts& counts) {
+    Vec3 from = surface.spawn();
     std::uint32_t skip = surface.skip;
     Real through = 1;
     for (int crossing = 0; crossing < kMaxCrossings; ++crossing) {
@@ -70,6 +59,27 @@ Real light_through(const World& world, const SurfacePoint& surface, Vec3 light, 
         ++counts.shadow;
     }
     return 0;
+}
+
+// The fraction of a light's colour that reaches a surface from `light` (docs/ARCHITECTURE.md,
+// "Conventions": shadows): 1 when nothing lies on the open segment, else the product of the
+// transmissions of every surface the segment crosses (0 at the first opaque one). Shadow rays
+// are not bent; each piece of the segment between crossings is one shadow ray. Without a
+// transmissive material in the scene, one any-hit query answers it; with one, an any-hit query
+// for opaque objects first, so that only segments that meet glass and nothing opaque are
+// followed crossing by crossing. `known`: that first query's answer, cast already in a packet
+// (TileLighting), or null.
+Real light_through(const World& world, const SurfacePoint& surface, Vec3 light, RayCounts& counts,
+                   const Real* known) {
+    ++counts.shadow;
+    if (known && *known != kThroughGlass) return *known;
+    if (known) return through_glass(world, surface, light, counts);
+    const Ray shadow = shadow_ray(surface, light);
+    if (!world.geometry()->transmissive)
+        return world.occluded(shadow, 1.0_r, surface.skip) ? 0.0_r : 1.0_r;
+    bool glass = false;
+    if (world.opaque_between(shadow, 1.0_r, surface.skip, glass)) return 0;
+    return glass ? through_glass(world, surface, light, counts) : 1;
 }
 
 } // namespace
@@ -107,8 +117,8 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoin
             continue;
         }
         const std::uint64_t shadow_rays = counts.shadow;
-        const Real through = known_light ? (++counts.shadow, known_light[j])
-                                         : light_through(world, surface, light.position, counts);
+        const Real through = light_through(world, surface, light.position, counts,
+                                           known_light ? &known_light[j] : nullptr);
         // The verdict: blocked, or how many segments (1 + glass crossings) reached the light.
         tree.note(through == 0 ? ~std::uint64_t{0} : counts.shadow - shadow_rays);
         if (through == 0) {

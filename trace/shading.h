@@ -61,6 +61,10 @@ inline Ray shadow_ray(const SurfacePoint& surface, Vec3 position) {
     return {from, position - from};
 }
 
+// A shadow verdict cast ahead (TileLighting, trace/pixel.h) where glass and nothing opaque lies
+// on the shadow ray: shade() follows it crossing by crossing.
+inline constexpr Real kThroughGlass = -1;
+
 // Colour seen along `ray` (unclamped), which has already produced `hit` (maybe none).
 // `depth` is the number of reflections and transmissions before this hit (0 for the primary
 // hit) and `weight` the product of the reflectivities and transmissions along the path so far.
@@ -69,9 +73,10 @@ inline Ray shadow_ray(const SurfacePoint& surface, Vec3 position) {
 Vec3 shade(const World& world, const Ray& ray, const Hit& hit, int depth, Real weight,
            RayTree& tree);
 // The same at a found hit whose surface point (World::surface) the caller has already rebuilt.
-// `known_light`, when given, holds per light the factor light_through would find (cast by the
-// caller in packets, for the lights in front of the surface); shade then counts those shadow
-// rays without casting them.
+// `known_light`, when given, holds per light the factor light_through would find, or
+// kThroughGlass where its first shadow ray meets glass and nothing opaque (cast by the caller in
+// packets, for the lights in front of the surface); shade then counts those shadow rays without
+// casting them, and follows the glass crossings itself.
 Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoint& surface,
            int depth, Real weight, RayTree& tree, const Real* known_light = nullptr);
 
