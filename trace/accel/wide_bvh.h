@@ -137,6 +137,15 @@ struct PacketRays {
         }
     }
 
+    // The rays whose t_max is at least t: those a child waiting with entry distance t (the
+    // nearest of its rays') may still serve. A ray left out enters that child's box, and every
+    // box in it, beyond its t_max: alone, it would have dropped it from its stack (pop).
+    Mask reaching(Real t) const {
+        Mask m = 0;
+        for (int r = 0; r < kMaxPacket; ++r) m |= Mask{t_max[r] >= t} << r;
+        return m;
+    }
+
     // The rays of `active` that meet child k's box within [0, t_max]; `t` lowered to the
     // nearest of their entry distances. Per ray, SlabRay::clip's arithmetic: near and far of
     // each axis by min and max, which for a box with lo ≤ hi is the plane the sign selects.
@@ -426,10 +435,11 @@ class WideBvh {
                         done |= Mask{1} << r;
                 }
             }
-            do {
+            do { // the next waiting child some unfinished ray still reaches
                 if (top == 0) return;
                 next = stack[--top];
-            } while ((next.rays & ~done) == 0);
+                next.rays &= ~done & packet.reaching(next.t);
+            } while (next.rays == 0);
         }
     }
 
