@@ -19,6 +19,32 @@ enum class TransformClass : std::uint8_t {
     general,       // any invertible affine map
 };
 
+// The part of a transform that takes rays to object space, alone: what a BVH leaf keeps of its
+// objects beside the shapes' parameters (World's leaf copies), a third of a Transform.
+struct ToObject {
+    TransformClass kind = TransformClass::identity;
+    Real inverse_scale = 1.0_r;
+    Vec3 offset{0.0_r};         // M's translation
+    Mat3 inverse_linear{1.0_r}; // M⁻¹'s 3×3 part
+    Vec3 inverse_offset{0.0_r}; // M⁻¹'s translation
+
+    // The ray in object space: origin with w = 1, direction with w = 0, not renormalised.
+    // Inline: every intersection test starts here.
+    Ray operator()(const Ray& ray) const {
+        switch (kind) {
+        case TransformClass::identity:
+            return ray;
+        case TransformClass::translation:
+            return {ray.origin - offset, ray.direction};
+        case TransformClass::uniform_scale:
+            return {(ray.origin - offset) * inverse_scale, ray.direction * inverse_scale};
+        case TransformClass::general:
+            break;
+        }
+        return {inverse_linear * ray.origin + inverse_offset, inverse_linear * ray.direction};
+    }
+};
+
 struct Transform {
     TransformClass kind = TransformClass::identity;
     Mat3 linear{1.0_r};         // M's 3×3 part
@@ -32,21 +58,11 @@ struct Transform {
     Real roundtrip_linear_error = 0.0_r;
     Real roundtrip_offset_error = 0.0_r;
 
-    // The ray in object space: origin with w = 1, direction with w = 0, not renormalised.
-    // Inline: every intersection test starts here.
-    Ray to_object(const Ray& ray) const {
-        switch (kind) {
-        case TransformClass::identity:
-            return ray;
-        case TransformClass::translation:
-            return {ray.origin - offset, ray.direction};
-        case TransformClass::uniform_scale:
-            return {(ray.origin - offset) * inverse_scale, ray.direction * inverse_scale};
-        case TransformClass::general:
-            break;
-        }
-        return {inverse_linear * ray.origin + inverse_offset, inverse_linear * ray.direction};
+    // The ray in object space (ToObject's arithmetic, which it keeps).
+    ToObject to_object_part() const {
+        return {kind, inverse_scale, offset, inverse_linear, inverse_offset};
     }
+    Ray to_object(const Ray& ray) const { return to_object_part()(ray); }
     // to_object as (p − offset)·inverse_scale (and d·inverse_scale) with the same rounding, for a
     // transform without rotation or shear; false for a general one. Subtracting +0 and
     // multiplying by 1 are exact, so an identity is offset +0 (its stored offset may be −0, and

@@ -20,7 +20,9 @@ Bounds world_bounds(const std::pair<DVec3, DVec3>& local, const DMat4& m) {
 // Whether a shape's hit on `object` stands: a ray's hit counts only where the ray also meets the
 // object's box within t_max (World::intersect_object says why), loosely, as the structures
 // prune.
-bool within_box(const Object& object, const ShapeHit& hit, const LazySlab& slab, Real t_max) {
+// `object`: an Object, or its BVH leaf copy.
+template <class Placed>
+bool within_box(const Placed& object, const ShapeHit& hit, const LazySlab& slab, Real t_max) {
     return !hit.found() || !object.bounded || slab.get().hits(object.bounds, loose(t_max));
 }
 
@@ -103,14 +105,17 @@ void World::order_leaves() {
     const WideBvh* bvh = accel_.wide_bvh();
     if (!bvh) return;
     leaf_objects_.reserve(bvh->items().size());
-    for (const std::uint32_t item : bvh->items())
-        leaf_objects_.push_back({objects_[bounded_[item]], bounded_[item]});
+    for (const std::uint32_t item : bvh->items()) {
+        const Object& o = objects_[bounded_[item]];
+        leaf_objects_.push_back(
+            {o.transform.to_object_part(), bounded_[item], o.params, o.bounds, o.shape});
+    }
     // Three entries of padding, so that four may be read from any slot.
     const std::size_t padded = leaf_objects_.size() + 3;
     leaf_spheres_.x.assign(padded, 0), leaf_spheres_.y.assign(padded, 0);
     leaf_spheres_.z.assign(padded, 0), leaf_spheres_.inverse_scale.assign(padded, 0);
     for (std::size_t slot = 0; slot < leaf_objects_.size(); ++slot) {
-        const Object& o = leaf_objects_[slot].object;
+        const Object& o = objects_[leaf_objects_[slot].index];
         Vec3 offset;
         Real inverse_scale;
         if (o.shape != ShapeKind::sphere || !o.transform.as_offset_scale(offset, inverse_scale))
@@ -143,26 +148,27 @@ void World::traverse(const Ray& ray, Real& t_max, Counters& counters, Visit&& vi
 // lie far outside their box.
 // Box tests against a limit use it widened by rounding (loose(), trace/math.h).
 
-template <class ShapeOf>
-ShapeHit World::intersect_object(const Object& object, const LazySlab& slab, Real t_max,
+template <class Placed, class ShapeOf>
+ShapeHit World::intersect_object(const Placed& object, const LazySlab& slab, Real t_max,
                                  bool box_tested, const ShapeOf& shape_of) const {
     const ShapeHit hit = shape_of(t_max);
     return box_tested || within_box(object, hit, slab, t_max) ? hit : ShapeHit{};
 }
 
 template <class Counters>
-ShapeHit World::intersect_shape(const Object& object, const Ray& world_ray, Real t_max,
-                                Counters& counters) const {
-    const Ray ray = object.transform.to_object(world_ray);
-    return visit_shape(object.shape, [&]<class S>(S) {
-        return S::intersect(object.params, ray, t_max, counters);
-    });
+ShapeHit World::intersect_shape(ShapeKind shape, const ShapeParams& params,
+                                const ToObject& to_object, const Ray& world_ray, Real t_max,
+                                Counters& counters) {
+    const Ray ray = to_object(world_ray);
+    return visit_shape(shape,
+                       [&]<class S>(S) { return S::intersect(params, ray, t_max, counters); });
 }
 
 template <class Counters>
 auto World::shape_of(const Object& object, const Ray& ray, Counters& counters) const {
-    return [&object, &ray, &counters, this](Real t_max) {
-        return intersect_shape(object, ray, t_max, counters);
+    return [&object, &ray, &counters](Real t_max) {
+        return intersect_shape(object.shape, object.params, object.transform.to_object_part(), ray,
+                               t_max, counters);
     };
 }
 
@@ -173,8 +179,10 @@ template <class Counters>
 ShapeHit World::leaf_shape_hit(std::uint32_t slot, const Ray& ray, Real t_max, LeafRoots& roots,
                                Counters& counters) const {
     const Real* inverse_scale = leaf_spheres_.inverse_scale.data();
-    if (inverse_scale[slot] == 0)
-        return intersect_shape(leaf_objects_[slot].object, ray, t_max, counters);
+    if (inverse_scale[slot] == 0) {
+        const LeafObject& leaf = leaf_objects_[slot];
+        return intersect_shape(leaf.shape, leaf.params, leaf.to_object, ray, t_max, counters);
+    }
     if (!roots.holds(slot)) {
         sphere_roots4(ray, &leaf_spheres_.x[slot], &leaf_spheres_.y[slot], &leaf_spheres_.z[slot],
                       &inverse_scale[slot], roots.roots);
@@ -193,7 +201,7 @@ bool World::visit_leaf(const Ray& ray, std::uint32_t begin, std::uint32_t end, R
         const auto shape = [&, slot](Real limit) {
             return leaf_shape_hit(slot, ray, limit, roots, counters);
         };
-        if (visit(leaf.index, leaf.object, t_max, shape)) return true;
+        if (visit(leaf.index, leaf, t_max, shape)) return true;
     }
     return false;
 }
@@ -201,8 +209,8 @@ bool World::visit_leaf(const Ray& ray, std::uint32_t begin, std::uint32_t end, R
 // Ties: on equal t the lower object index wins, whatever order a structure visits objects in,
 // so every structure returns exactly the list's hit. Each object is therefore tested up to the
 // next float above the best t, and an equal t replaces the best only from a lower index.
-template <class ShapeOf>
-void World::consider(Closest& query, std::uint32_t index, const Object& object,
+template <class Placed, class ShapeOf>
+void World::consider(Closest& query, std::uint32_t index, const Placed& object,
                      const ShapeOf& shape_of) const {
     if (index == query.skip) return;
     Hit& best = query.best;
@@ -227,7 +235,7 @@ Hit World::closest(const Ray& ray, Real t_max, std::uint32_t skip, Counters& cou
     query.best.t = t_max;
     Real limit = begin_closest(query, counters);
     traverse(ray, limit, counters,
-             [&](std::uint32_t index, const Object& object, Real& t_limit, const auto& shape) {
+             [&](std::uint32_t index, const auto& object, Real& t_limit, const auto& shape) {
                  consider(query, index, object, shape);
                  t_limit = loose(query.best.t);
                  return false;
@@ -254,7 +262,7 @@ void World::closest_packet(std::span<const Ray> rays, Hit* hits, Counters& count
         rays.data(), static_cast<int>(rays.size()), limit, counters,
         [&](int r, std::uint32_t begin, std::uint32_t end, Real& t_limit) {
             visit_leaf(rays[r], begin, end, t_limit, counters,
-                       [&](std::uint32_t index, const Object& object, Real&, const auto& shape) {
+                       [&](std::uint32_t index, const auto& object, Real&, const auto& shape) {
                            consider(query[r], index, object, shape);
                            return false;
                        });
@@ -264,9 +272,9 @@ void World::closest_packet(std::span<const Ray> rays, Hit* hits, Counters& count
     for (std::size_t r = 0; r < rays.size(); ++r) hits[r] = query[r].best;
 }
 
-template <class ShapeOf, class Blocks>
+template <class Placed, class ShapeOf, class Blocks>
 bool World::blocks_ray(const LazySlab& slab, Real t_max, std::uint32_t skip, std::uint32_t index,
-                       const Object& object, bool box_tested, const ShapeOf& shape_of,
+                       const Placed& object, bool box_tested, const ShapeOf& shape_of,
                        const Blocks& blocks) const {
     return index != skip && intersect_object(object, slab, t_max, box_tested, shape_of).found() &&
            blocks(index);
@@ -289,7 +297,7 @@ bool World::any(const Ray& ray, Real t_max, std::uint32_t skip, Counters& counte
     // end of a shadow ray 2e9 long, which the BVH counted (fuzz_nff).
     Real limit = loose(t_max);
     traverse(ray, limit, counters,
-             [&](std::uint32_t index, const Object& object, Real&, const auto& shape) {
+             [&](std::uint32_t index, const auto& object, Real&, const auto& shape) {
                  found = blocks_ray(slab, t_max, skip, index, object, boxes_tested, shape, blocks);
                  return found;
              });
@@ -333,7 +341,7 @@ void World::any_packet(std::span<const Ray> rays, Real t_max, const std::uint32_
             const int r = which[k];
             return found[r] = visit_leaf(
                        rays[r], begin, end, limit, counters,
-                       [&](std::uint32_t index, const Object& object, Real&, const auto& shape) {
+                       [&](std::uint32_t index, const auto& object, Real&, const auto& shape) {
                            return blocks_ray(slab[r], t_max, skips[r], index, object, false, shape,
                                              [&](std::uint32_t i) { return blocks(r, i); });
                        });

@@ -164,13 +164,16 @@ class World {
     // The object's first hit in (0, t_max), counted only if the ray meets the object's box in
     // that interval (`box_tested`: the structure has checked that already; `slab`: the ray's).
     // shape_of(t_max): the shape's hit in object space (shape_of() or leaf_shape_hit).
-    template <class ShapeOf>
-    ShapeHit intersect_object(const Object& object, const LazySlab& slab, Real t_max,
+    // `object`: an Object, or its copy in a BVH leaf (LeafObject).
+    template <class Placed, class ShapeOf>
+    ShapeHit intersect_object(const Placed& object, const LazySlab& slab, Real t_max,
                               bool box_tested, const ShapeOf& shape_of) const;
-    // The same without the box check: the shape's own intersection routine.
+    // The same without the box check: the shape's own intersection routine, on the ray taken
+    // to object space by `to_object` (the object's, or its leaf copy's).
     template <class Counters>
-    ShapeHit intersect_shape(const Object& object, const Ray& world_ray, Real t_max,
-                             Counters& counters) const;
+    static ShapeHit intersect_shape(ShapeKind shape, const ShapeParams& params,
+                                    const ToObject& to_object, const Ray& world_ray, Real t_max,
+                                    Counters& counters);
     // intersect_shape(object, ray, ·, counters) as a shape_of.
     template <class Counters>
     auto shape_of(const Object& object, const Ray& ray, Counters& counters) const;
@@ -198,8 +201,8 @@ class World {
     };
     // Starts `query` (t_max, skip set) on the unbounded objects; the limit for the structure.
     template <class Counters> Real begin_closest(Closest& query, Counters& counters) const;
-    template <class ShapeOf>
-    void consider(Closest& query, std::uint32_t index, const Object& object,
+    template <class Placed, class ShapeOf>
+    void consider(Closest& query, std::uint32_t index, const Placed& object,
                   const ShapeOf& shape_of) const;
     // The bounded objects the ray may meet, through the structure: visit(index, object, t_max,
     // shape_of) as the structure's visitor (accel.h) with the object's shape_of; with the
@@ -211,9 +214,9 @@ class World {
     template <class Counters>
     void closest_packet(std::span<const Ray> rays, Hit* hits, Counters& counters) const;
     // Whether object `object` (other than `skip`) is hit in (0, t_max) and `blocks` it.
-    template <class ShapeOf, class Blocks>
+    template <class Placed, class ShapeOf, class Blocks>
     bool blocks_ray(const LazySlab& slab, Real t_max, std::uint32_t skip, std::uint32_t index,
-                    const Object& object, bool box_tested, const ShapeOf& shape_of,
+                    const Placed& object, bool box_tested, const ShapeOf& shape_of,
                     const Blocks& blocks) const;
     // Whether an object other than `skip` for which `blocks(object)` holds is hit in (0, t_max).
     template <class Counters, class Blocks>
@@ -240,10 +243,16 @@ class World {
     std::vector<std::uint32_t> bounded_;   // accelerator item → object index
     Accelerator accel_;
     // With the eight-wide BVH, its leaves' objects in its slot order, so that the objects a leaf
-    // names are adjacent in memory (copies of objects_[index]; empty for other structures).
+    // names are adjacent in memory (empty for other structures): of objects_[index], what its
+    // intersection reads (the ray's way to object space, the shape, the box a hit is checked
+    // against), two thirds of an Object. Every object in the tree is bounded.
     struct LeafObject {
-        Object object;
+        ToObject to_object;
         std::uint32_t index;
+        ShapeParams params;
+        Bounds bounds;
+        ShapeKind shape;
+        static constexpr bool bounded = true;
     };
     std::vector<LeafObject> leaf_objects_;
     // Beside leaf_objects_, for the spheres placed without rotation or shear: their offsets and
