@@ -156,10 +156,8 @@ ShapeHit World::intersect_object(const Placed& object, const LazySlab& slab, Rea
 }
 
 template <class Counters>
-ShapeHit World::intersect_shape(ShapeKind shape, const ShapeParams& params,
-                                const ToObject& to_object, const Ray& world_ray, Real t_max,
-                                Counters& counters) {
-    const Ray ray = to_object(world_ray);
+ShapeHit World::intersect_shape(ShapeKind shape, const ShapeParams& params, const Ray& ray,
+                                Real t_max, Counters& counters) {
     return visit_shape(shape,
                        [&]<class S>(S) { return S::intersect(params, ray, t_max, counters); });
 }
@@ -167,8 +165,8 @@ ShapeHit World::intersect_shape(ShapeKind shape, const ShapeParams& params,
 template <class Counters>
 auto World::shape_of(const Object& object, const Ray& ray, Counters& counters) const {
     return [&object, &ray, &counters](Real t_max) {
-        return intersect_shape(object.shape, object.params, object.transform.to_object_part(), ray,
-                               t_max, counters);
+        return intersect_shape(object.shape, object.params, object.transform.to_object(ray), t_max,
+                               counters);
     };
 }
 
@@ -181,7 +179,7 @@ ShapeHit World::leaf_shape_hit(std::uint32_t slot, const Ray& ray, Real t_max, L
     const Real* inverse_scale = leaf_spheres_.inverse_scale.data();
     if (inverse_scale[slot] == 0) {
         const LeafObject& leaf = leaf_objects_[slot];
-        return intersect_shape(leaf.shape, leaf.params, leaf.to_object, ray, t_max, counters);
+        return intersect_shape(leaf.shape, leaf.params, leaf.to_object(ray), t_max, counters);
     }
     if (!roots.holds(slot)) {
         sphere_roots4(ray, &leaf_spheres_.x[slot], &leaf_spheres_.y[slot], &leaf_spheres_.z[slot],

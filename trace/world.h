@@ -168,12 +168,11 @@ class World {
     template <class Placed, class ShapeOf>
     ShapeHit intersect_object(const Placed& object, const LazySlab& slab, Real t_max,
                               bool box_tested, const ShapeOf& shape_of) const;
-    // The same without the box check: the shape's own intersection routine, on the ray taken
-    // to object space by `to_object` (the object's, or its leaf copy's).
+    // The same without the box check: the shape's own intersection routine, on the ray in
+    // object space (taken there by the object's transform, or its leaf copy's ToObject).
     template <class Counters>
-    static ShapeHit intersect_shape(ShapeKind shape, const ShapeParams& params,
-                                    const ToObject& to_object, const Ray& world_ray, Real t_max,
-                                    Counters& counters);
+    static ShapeHit intersect_shape(ShapeKind shape, const ShapeParams& params, const Ray& ray,
+                                    Real t_max, Counters& counters);
     // intersect_shape(object, ray, ·, counters) as a shape_of.
     template <class Counters>
     auto shape_of(const Object& object, const Ray& ray, Counters& counters) const;
