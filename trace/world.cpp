@@ -306,11 +306,13 @@ template <class Counters, class Blocks>
 void World::any_packet(std::span<const Ray> rays, Real t_max, const std::uint32_t* skips,
                        bool* found, Counters& counters, const Blocks& blocks) const {
     assert(rays.size() <= kMaxPacket);
+    const auto blocks_for = [&blocks](std::size_t r) { // blocks(r, ·), as any() takes it
+        return [&blocks, r](std::uint32_t object) { return blocks(r, object); };
+    };
     const WideBvh* bvh = accel_.wide_bvh();
     if (!bvh) {
         for (std::size_t r = 0; r < rays.size(); ++r)
-            found[r] = any(rays[r], t_max, skips[r], counters,
-                           [&](std::uint32_t object) { return blocks(r, object); });
+            found[r] = any(rays[r], t_max, skips[r], counters, blocks_for(r));
         return;
     }
     // The unbounded objects ray by ray; the rays they leave unanswered go through the tree.
@@ -323,9 +325,9 @@ void World::any_packet(std::span<const Ray> rays, Real t_max, const std::uint32_
         found[r] = false;
         for (const std::uint32_t object : unbounded_) {
             counters.primitive();
-            if ((found[r] = blocks_ray(slab[r], t_max, skips[r], object, objects_[object], false,
-                                       shape_of(objects_[object], rays[r], counters),
-                                       [&](std::uint32_t index) { return blocks(r, index); })))
+            if ((found[r] =
+                     blocks_ray(slab[r], t_max, skips[r], object, objects_[object], false,
+                                shape_of(objects_[object], rays[r], counters), blocks_for(r))))
                 break;
         }
         if (found[r]) continue;
@@ -341,7 +343,7 @@ void World::any_packet(std::span<const Ray> rays, Real t_max, const std::uint32_
                        rays[r], begin, end, limit, counters,
                        [&](std::uint32_t index, const auto& object, Real&, const auto& shape) {
                            return blocks_ray(slab[r], t_max, skips[r], index, object, false, shape,
-                                             [&](std::uint32_t i) { return blocks(r, i); });
+                                             blocks_for(r));
                        });
         });
 }
@@ -362,11 +364,7 @@ bool World::occluded(const Ray& ray, Real t_max, std::uint32_t skip) const {
 bool World::opaque_between(const Ray& ray, Real t_max, std::uint32_t skip,
                            bool& transmissive) const {
     transmissive = false;
-    const auto blocks = [&](std::uint32_t object) {
-        const bool opaque = material(object).transmission == 0;
-        transmissive |= !opaque;
-        return opaque;
-    };
+    const auto blocks = [&](std::uint32_t object) { return stops_light(object, transmissive); };
     if (counting_) return any(ray, t_max, skip, counters_.local(), blocks);
     NoCounters none;
     return any(ray, t_max, skip, none, blocks);
@@ -390,9 +388,7 @@ void World::opaque_between_packet(std::span<const Ray> rays, Real t_max, const s
                                   bool* opaque, bool* transmissive) const {
     std::fill_n(transmissive, rays.size(), false);
     const auto blocks = [&](std::size_t r, std::uint32_t object) {
-        const bool blocking = material(object).transmission == 0;
-        transmissive[r] |= !blocking;
-        return blocking;
+        return stops_light(object, transmissive[r]);
     };
     if (counting_) return any_packet(rays, t_max, skips, opaque, counters_.local(), blocks);
     NoCounters none;

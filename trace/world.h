@@ -173,7 +173,8 @@ class World {
     template <class Counters>
     static ShapeHit intersect_shape(ShapeKind shape, const ShapeParams& params, const Ray& ray,
                                     Real t_max, Counters& counters);
-    // intersect_shape(object, ray, ·, counters) as a shape_of.
+    // intersect_shape for `object` on `ray` (taken to object space by its transform), as a
+    // shape_of.
     template <class Counters>
     auto shape_of(const Object& object, const Ray& ray, Counters& counters) const;
     // The roots of up to four of a leaf's spheres, from slot `first` on (leaf_shape_hit).
@@ -221,6 +222,12 @@ class World {
     template <class Counters, class Blocks>
     bool any(const Ray& ray, Real t_max, std::uint32_t skip, Counters& counters,
              const Blocks& blocks) const;
+    // Whether `object` stops light (opaque_between's question); notes in `glass` when not.
+    bool stops_light(std::uint32_t object, bool& glass) const {
+        const bool stops = material(object).transmission == 0;
+        glass |= !stops;
+        return stops;
+    }
     // any() for a packet; blocks(i, object) for ray i.
     template <class Counters, class Blocks>
     void any_packet(std::span<const Ray> rays, Real t_max, const std::uint32_t* skips, bool* found,
