@@ -72,8 +72,8 @@ Real through_glass(const World& world, const SurfacePoint& surface, Vec3 light, 
 Real light_through(const World& world, const SurfacePoint& surface, Vec3 light, RayCounts& counts,
                    const Real* known) {
     ++counts.shadow;
-    if (known && *known != kThroughGlass) return *known;
-    if (known) return through_glass(world, surface, light, counts);
+    if (known)
+        return *known == kThroughGlass ? through_glass(world, surface, light, counts) : *known;
     const Ray shadow = shadow_ray(surface, light);
     if (!world.geometry()->transmissive)
         return world.occluded(shadow, 1.0_r, surface.skip) ? 0.0_r : 1.0_r;
