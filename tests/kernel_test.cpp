@@ -5,6 +5,7 @@
 #include "test_scenes.h"
 
 #include "trace/kernel.h"
+#include "trace/shapes/cylinder.h"
 #include "trace/shapes/mesh.h"
 #include "trace/shapes/sphere.h"
 #include "trace/transform.h"
@@ -319,6 +320,129 @@ TEST(Kernel, SphereBlocksAgreeExactlyWithTheSingleTest) {
         }
     }
     EXPECT_GT(hits, tests / 4) << "too few hits to mean much";
+}
+
+// Bits equal, any NaN equal to any NaN (which NaN a division of zeros gives is the processor's).
+bool same_bits(Real a, Real b) {
+    return (std::isnan(a) && std::isnan(b)) ||
+           std::bit_cast<std::uint32_t>(static_cast<float>(a)) ==
+               std::bit_cast<std::uint32_t>(static_cast<float>(b));
+}
+
+// A random placement of one of every kind: an identity (its offset sometimes −0), a translation
+// up to 1e5 away, a uniform scale from 1e-4 to 1e4, or general: rotated and scaled unevenly
+// (one axis squashed up to a millionfold) or sheared.
+Transform random_placement(std::mt19937& rng) {
+    std::uniform_real_distribution<double> u(-1, 1);
+    static constexpr double kScales[] = {1e-4, 1e-2, 1, 1, 1e2, 1e4};
+    const double scale = kScales[rng() % 6];
+    const DVec3 where = DVec3(u(rng), u(rng), u(rng)) * (rng() % 3 == 0 ? 1e5 : 10.0 * scale);
+    DMat4 m(1.0);
+    switch (rng() % 4) {
+    case 0:
+        if (rng() % 2) m[3] = glm::dvec4(-0.0, -0.0, -0.0, 1.0);
+        break;
+    case 1:
+        m = translation_matrix(where);
+        break;
+    case 2:
+        m = translation_matrix(where) * scale_matrix(DVec3(scale));
+        break;
+    default: {
+        DMat4 linear = scale_matrix(DVec3(scale * (0.2 + std::abs(u(rng))),
+                                          scale * (rng() % 4 == 0 ? 1e-6 : 0.2 + std::abs(u(rng))),
+                                          scale * (0.2 + std::abs(u(rng)))));
+        if (rng() % 3 == 0)
+            for (int c = 0; c < 3; ++c)
+                for (int r = 0; r < 3; ++r) linear[c][r] += c == r ? 0.0 : 0.5 * scale * u(rng);
+        m = translation_matrix(where) *
+            rotation_matrix({u(rng), u(rng), u(rng) + 0.1}, 180 * u(rng)) * linear;
+        if (why_unusable(m)) m = translation_matrix(where);
+    }
+    }
+    return make_transform(m);
+}
+
+// ToObjectColumns::to_object4 against each Transform::to_object, and cylinder_crossings4 against
+// cylinder_crossings on that ray, lane by lane, bit for bit: placements of every kind, from any
+// slot (reading into the padding), and rays aimed at one of the four cylinders' sides, cap
+// rims and cap centres, tangent to the side, along the axis (no side quadratic), from inside,
+// axis-parallel in world space, and with −0 coordinates. Half a million blocks in Release.
+TEST(Kernel, LeafLanesTakeRaysToObjectSpaceAndCrossCylindersExactlyAsTheSingleCode) {
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<double> u(-1, 1);
+    const int blocks = testing::kUnderSanitizers ? 6000 : 60000;
+    std::uint64_t lanes = 0, side_hits = 0, cap_hits = 0;
+    for (int b = 0; b < blocks; ++b) {
+        const std::size_t slots = 1 + rng() % 4;
+        Transform placed[4];
+        ToObjectColumns columns;
+        columns.assign(slots);
+        for (std::size_t i = 0; i < slots; ++i)
+            placed[i] = random_placement(rng), columns.set(i, placed[i]);
+        for (int r = 0; r < 8; ++r) {
+            const Transform& at = placed[rng() % slots];
+            const auto to_world = [&](DVec3 p) {
+                return DVec3(glm::dmat3(at.linear) * p + DVec3(at.offset));
+            };
+            const double angle = 3.14159265358979 * u(rng);
+            const DVec3 rim(std::cos(angle), 0, std::sin(angle));
+            DVec3 target, along(u(rng), u(rng), u(rng));
+            switch (rng() % 5) {
+            case 0: // the side, or just past its ends
+                target = rim + DVec3(0, 0.5 + 0.7 * u(rng), 0);
+                break;
+            case 1: // tangent to the side
+                target = rim + DVec3(0, 0.5 + 0.5 * u(rng), 0);
+                along = glm::cross(rim, DVec3(0, 1, 0)) + DVec3(0, 0.1 * u(rng), 0);
+                break;
+            case 2: // a cap's rim
+                target = rim + DVec3(0, rng() % 2, 0);
+                break;
+            case 3: // along the axis
+                target = DVec3(0.9 * u(rng), 0.5, 0.9 * u(rng)), along = DVec3(0, 1, 0);
+                break;
+            default: // a cap's centre
+                target = DVec3(0, rng() % 2, 0);
+                break;
+            }
+            const Vec3 world_target(to_world(target));
+            Vec3 direction(glm::normalize(glm::dmat3(at.linear) * along));
+            if (rng() % 4 == 0) direction = Vec3(0), direction[rng() % 3] = rng() % 2 ? 1 : -1;
+            if (!(glm::length(direction) > 0)) direction = {0, 0, 1};
+            const float reach = glm::length(Vec3(to_world(DVec3(1, 1, 1)) - to_world(DVec3(0))));
+            Vec3 origin = rng() % 4 == 0 ? Vec3(to_world(DVec3(0.3 * u(rng), 0.5, 0.3 * u(rng))))
+                                         : world_target - 3.0f * reach * direction;
+            if (rng() % 8 == 0) origin[rng() % 3] = -0.0f;
+            const Ray ray{origin, direction};
+
+            const std::size_t first = rng() % slots;
+            Rays4 got;
+            columns.to_object4(ray, first, got);
+            CylinderCrossings crossed[4];
+            cylinder_crossings4(got, crossed);
+            for (std::size_t i = 0; first + i < slots; ++i) {
+                const Ray expected = placed[first + i].to_object(ray);
+                const Ray lane = got.lane(static_cast<int>(i));
+                for (int axis = 0; axis < 3; ++axis) {
+                    ASSERT_TRUE(same_bits(lane.origin[axis], expected.origin[axis]))
+                        << "block " << b << " lane " << i << " origin " << axis;
+                    ASSERT_TRUE(same_bits(lane.direction[axis], expected.direction[axis]))
+                        << "block " << b << " lane " << i << " direction " << axis;
+                }
+                const CylinderCrossings want = cylinder_crossings(expected, false);
+                for (int k = 0; k < 4; ++k)
+                    ASSERT_TRUE(same_bits(crossed[i].t[k], want.t[k]))
+                        << "block " << b << " lane " << i << " crossing " << k << ": got "
+                        << crossed[i].t[k] << ", expected " << want.t[k];
+                const ShapeHit hit = cylinder_hit(want, kInfinity, false);
+                ++lanes, side_hits += hit.found() && hit.part == 0,
+                    cap_hits += hit.found() && hit.part != 0;
+            }
+        }
+    }
+    EXPECT_GT(side_hits, lanes / 10) << "too few side hits to mean much";
+    EXPECT_GT(cap_hits, lanes / 20) << "too few cap hits to mean much";
 }
 
 } // namespace

@@ -53,6 +53,7 @@ constexpr Real operator""_r(unsigned long long value) {
 }
 
 inline constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
+inline constexpr Real kNaN = std::numeric_limits<Real>::quiet_NaN();
 
 // Unit roundoff (2^-24 in float, 2^-53 in double): one rounded operation has relative error at
 // most this.

@@ -13,6 +13,18 @@ struct Ray {
     Vec3 direction;
 };
 
+// Four rays side by side (structure of arrays), as SIMD kernels produce and read them: lane i
+// is ray i. Unset lanes are left unset (a kernel computes all four; its caller uses some).
+struct Rays4 {
+    alignas(16) Real origin[3][4];
+    alignas(16) Real direction[3][4];
+
+    Ray lane(int i) const {
+        return {{origin[0][i], origin[1][i], origin[2][i]},
+                {direction[0][i], direction[1][i], direction[2][i]}};
+    }
+};
+
 inline constexpr std::uint32_t kNoObject = std::numeric_limits<std::uint32_t>::max();
 
 // The closest hit found so far. `primitive` is the triangle index within a mesh, or the part of

@@ -106,5 +106,25 @@ Vec3 Transform::roundtrip_error(Vec3 p, Vec3 p_error) const {
     return p_error + back_error + Vec3(roundtrip_linear_error * p_sum + roundtrip_offset_error);
 }
 
+void ToObjectColumns::assign(std::size_t n) {
+    for (std::vector<Real>& column : column_) column.assign(n + 3, 0.0_r);
+    column_[kInverseScale].assign(n + 3, 1.0_r);
+    general_.assign(n + 3, 0);
+}
+
+void ToObjectColumns::set(std::size_t slot, const Transform& transform) {
+    Vec3 offset(0.0_r);
+    Real inverse_scale = 0.0_r;
+    general_[slot] = transform.as_offset_scale(offset, inverse_scale) ? 0 : ~0u;
+    for (int axis = 0; axis < 3; ++axis) column_[axis][slot] = offset[axis];
+    column_[kInverseScale][slot] = inverse_scale;
+    const bool general = general_[slot] != 0;
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r)
+            column_[kLinear + 3 * c + r][slot] = general ? transform.inverse_linear[c][r] : 0.0_r;
+    for (int r = 0; r < 3; ++r)
+        column_[kLinearOffset + r][slot] = general ? transform.inverse_offset[r] : 0.0_r;
+}
+
 } // namespace GLINT_PRECISION
 } // namespace glint

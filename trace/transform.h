@@ -7,6 +7,9 @@
 #include "trace/ray.h"
 #include "trace/scene.h"
 
+#include <cstdint>
+#include <vector>
+
 namespace glint {
 inline namespace GLINT_PRECISION {
 
@@ -92,6 +95,85 @@ struct Transform {
 
 // Rounds a validated M (see why_unusable) to float and classifies it.
 Transform make_transform(const DMat4& m);
+
+// The ways to object space of a run of objects (a BVH's leaf copies, in slot order) in structure
+// of arrays, so that one ray is taken into four objects' spaces at once: to_object4, bit for bit
+// each Transform::to_object. A transform without rotation or shear keeps as_offset_scale's
+// offset and inverse scale (which a leaf's spheres read directly: sphere_roots4), a general one
+// M⁻¹'s entries.
+class ToObjectColumns {
+  public:
+    // n slots, each an identity, with three of padding so that four may be read from any slot.
+    void assign(std::size_t n);
+    void set(std::size_t slot, const Transform& transform);
+
+    bool general(std::size_t slot) const { return general_[slot] != 0; }
+    // as_offset_scale's offset (axis 0–2) and inverse scale, from `slot` on (0 where general).
+    const Real* offset(int axis, std::size_t slot) const { return &column_[axis][slot]; }
+    const Real* inverse_scale(std::size_t slot) const { return &column_[kInverseScale][slot]; }
+
+    // Lane i: the ray in slot first + i's object space. In SSE both ways are computed four
+    // lanes at once, each lane keeping its own, with Transform::to_object's operations in the
+    // same order (glm's M⁻¹·p sums its three products left to right); elsewhere, lane by lane.
+    void to_object4(const Ray& ray, std::size_t first, Rays4& out) const;
+
+  private:
+    // M⁻¹'s 3×3 part column by column (glm's [column][row]), then its translation.
+    enum : int { kInverseScale = 3, kLinear = 4, kLinearOffset = 13, kColumns = 16 };
+    const Real* at(int column, std::size_t slot) const { return &column_[column][slot]; }
+    std::vector<Real> column_[kColumns];
+    std::vector<std::uint32_t> general_; // all ones for a general transform: an SSE lane mask
+};
+
+inline void ToObjectColumns::to_object4(const Ray& ray, std::size_t first, Rays4& out) const {
+#if GLINT_SIMD
+    const __m128 general =
+        _mm_castsi128_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(&general_[first])));
+    const __m128 scale = _mm_loadu_ps(at(kInverseScale, first));
+    const __m128 o[3] = {_mm_set1_ps(ray.origin.x), _mm_set1_ps(ray.origin.y),
+                         _mm_set1_ps(ray.origin.z)};
+    const __m128 d[3] = {_mm_set1_ps(ray.direction.x), _mm_set1_ps(ray.direction.y),
+                         _mm_set1_ps(ray.direction.z)};
+    const auto pick = [general](__m128 if_general, __m128 otherwise) {
+        return _mm_or_ps(_mm_and_ps(general, if_general), _mm_andnot_ps(general, otherwise));
+    };
+    for (int row = 0; row < 3; ++row) {
+        const __m128 m0 = _mm_loadu_ps(at(kLinear + row, first));
+        const __m128 m1 = _mm_loadu_ps(at(kLinear + 3 + row, first));
+        const __m128 m2 = _mm_loadu_ps(at(kLinear + 6 + row, first));
+        const auto times = [&](const __m128(&v)[3]) {
+            return _mm_add_ps(_mm_add_ps(_mm_mul_ps(m0, v[0]), _mm_mul_ps(m1, v[1])),
+                              _mm_mul_ps(m2, v[2]));
+        };
+        const __m128 origin =
+            pick(_mm_add_ps(times(o), _mm_loadu_ps(at(kLinearOffset + row, first))),
+                 _mm_mul_ps(_mm_sub_ps(o[row], _mm_loadu_ps(at(row, first))), scale));
+        _mm_store_ps(out.origin[row], origin);
+        _mm_store_ps(out.direction[row], pick(times(d), _mm_mul_ps(d[row], scale)));
+    }
+#else
+    for (std::size_t i = 0; i < 4; ++i) {
+        const std::size_t slot = first + i;
+        Ray local;
+        if (general(slot)) {
+            Mat3 linear;
+            for (int c = 0; c < 3; ++c)
+                for (int r = 0; r < 3; ++r) linear[c][r] = *at(kLinear + 3 * c + r, slot);
+            const Vec3 linear_offset(*at(kLinearOffset, slot), *at(kLinearOffset + 1, slot),
+                                     *at(kLinearOffset + 2, slot));
+            local = {linear * ray.origin + linear_offset, linear * ray.direction};
+        } else {
+            const Real s = *at(kInverseScale, slot);
+            const Vec3 offset(*at(0, slot), *at(1, slot), *at(2, slot));
+            local = {(ray.origin - offset) * s, ray.direction * s};
+        }
+        for (int axis = 0; axis < 3; ++axis) {
+            out.origin[axis][i] = local.origin[axis];
+            out.direction[axis][i] = local.direction[axis];
+        }
+    }
+#endif
+}
 
 } // namespace GLINT_PRECISION
 } // namespace glint

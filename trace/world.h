@@ -169,7 +169,7 @@ class World {
     ShapeHit intersect_object(const Placed& object, const LazySlab& slab, Real t_max,
                               bool box_tested, const ShapeOf& shape_of) const;
     // The same without the box check: the shape's own intersection routine, on the ray in
-    // object space (taken there by the object's transform, or its leaf copy's ToObject).
+    // object space (taken there by the object's transform, or by the leaf columns' to_object4).
     template <class Counters>
     static ShapeHit intersect_shape(ShapeKind shape, const ShapeParams& params, const Ray& ray,
                                     Real t_max, Counters& counters);
@@ -177,15 +177,22 @@ class World {
     // shape_of.
     template <class Counters>
     auto shape_of(const Object& object, const Ray& ray, Counters& counters) const;
-    // The roots of up to four of a leaf's spheres, from slot `first` on (leaf_shape_hit).
-    struct LeafRoots {
-        std::uint32_t first = 0, end = 0; // the slots `roots` holds: none yet
+    // What four of a leaf's objects from a slot on share, computed on first use and kept for
+    // the leaf's next slots (leaf_shape_hit): the roots of its spheres placed without rotation
+    // or shear (sphere_roots4), and where the ray crosses its cylinders (cylinder_crossings4).
+    struct LeafLanes {
+        std::uint32_t sphere_first = 0, sphere_end = 0; // the slots `roots` holds: none yet
         SphereRoots roots[4];
-        bool holds(std::uint32_t slot) const { return slot >= first && slot < end; }
+        std::uint32_t cylinder_first = 0, cylinder_end = 0; // and `crossings`
+        CylinderCrossings crossings[4];
     };
     template <class Counters>
-    ShapeHit leaf_shape_hit(std::uint32_t slot, const Ray& ray, Real t_max, LeafRoots& roots,
+    ShapeHit leaf_shape_hit(std::uint32_t slot, const Ray& ray, Real t_max, LeafLanes& lanes,
                             Counters& counters) const;
+    struct LeafObject;
+    template <class Counters>
+    ShapeHit other_leaf_shape_hit(const LeafObject& leaf, std::uint32_t slot, const Ray& ray,
+                                  Real t_max, LeafLanes& lanes, Counters& counters) const;
     // The eight-wide BVH's leaf [begin, end) for one ray: visit(index, object, t_max, shape_of)
     // for each of its objects in slot order, until one returns true (then true).
     template <class Counters, class Visit>
@@ -250,23 +257,22 @@ class World {
     Accelerator accel_;
     // With the eight-wide BVH, its leaves' objects in its slot order, so that the objects a leaf
     // names are adjacent in memory (empty for other structures): of objects_[index], what its
-    // intersection reads (the ray's way to object space, the shape, the box a hit is checked
-    // against), two thirds of an Object. Every object in the tree is bounded.
+    // intersection reads beside its way to object space (the shape, the box a hit is checked
+    // against). Every object in the tree is bounded.
     struct LeafObject {
         ToObject to_object;
         std::uint32_t index;
         ShapeParams params;
         Bounds bounds;
         ShapeKind shape;
+        bool sphere4; // a sphere placed without rotation or shear: its roots by sphere_roots4
         static constexpr bool bounded = true;
     };
     std::vector<LeafObject> leaf_objects_;
-    // Beside leaf_objects_, for the spheres placed without rotation or shear: their offsets and
-    // inverse scales in structure of arrays (inverse_scale 0: not such a sphere), so that a
-    // leaf's spheres are tested four at a time (sphere_roots4, trace/shapes/sphere.h).
-    struct LeafSpheres {
-        std::vector<Real> x, y, z, inverse_scale;
-    } leaf_spheres_;
+    // Beside leaf_objects_, their ways to object space in structure of arrays, so that four of
+    // a leaf's objects are taken there at once, and its spheres and cylinders tested four at a
+    // time (leaf_shape_hit).
+    ToObjectColumns leaf_to_object_;
     void order_leaves();
     double build_seconds_ = 0;
     bool counting_ = false;

@@ -10,20 +10,34 @@
 namespace glint {
 inline namespace GLINT_PRECISION {
 
-// A hit on the horizontal disk y = height, x²+z² ≤ radius².
-inline ShapeHit intersect_cap(const Ray& ray, Real height, Real radius, Real t_max,
-                              std::uint32_t part) {
+// Where the ray crosses the horizontal disk y = height, x²+z² ≤ radius²: t, or NaN where it
+// passes outside (or never reaches the plane: a NaN x²+z² counts as inside, t being NaN then
+// or infinite).
+inline Real cap_crossing(const Ray& ray, Real height, Real radius) {
     const Real t = (height - ray.origin.y) / ray.direction.y;
     const Real x = ray.origin.x + t * ray.direction.x;
     const Real z = ray.origin.z + t * ray.direction.z;
-    if (x * x + z * z > radius * radius) return {};
-    return candidate(t, t_max, part);
+    return x * x + z * z > radius * radius ? kNaN : t;
 }
 
-inline ShapeHit intersect_cylinder(const Ray& ray, Real t_max, bool open = false) {
+// A hit on that disk.
+inline ShapeHit intersect_cap(const Ray& ray, Real height, Real radius, Real t_max,
+                              std::uint32_t part) {
+    return candidate(cap_crossing(ray, height, radius), t_max, part);
+}
+
+// Where a ray crosses the cylinder, in the order its hit prefers them on equal t: the side's
+// two roots (nearer first), the cap at y = 0, the cap at y = 1; NaN where it does not. These
+// depend on the ray alone, so four cylinders' are computed at once (cylinder_crossings4) and
+// each lane's hit picked below t_max afterwards (cylinder_hit).
+struct CylinderCrossings {
+    Real t[4];
+};
+
+inline CylinderCrossings cylinder_crossings(const Ray& ray, bool open) {
     const Vec3 o = ray.origin;
     const Vec3 d = ray.direction;
-    ShapeHit best;
+    CylinderCrossings crossings{{kNaN, kNaN, kNaN, kNaN}};
     // The side: the sphere's cancellation-free quadratic, in the xz plane.
     const Real a = d.x * d.x + d.z * d.z;
     if (a > 0) {
@@ -34,15 +48,83 @@ inline ShapeHit intersect_cylinder(const Ray& ray, Real t_max, bool open = false
         const Real discriminant = a * (1.0_r - (cx * cx + cz * cz));
         if (discriminant >= 0) {
             const Real q = -(b + std::copysign(std::sqrt(discriminant), b));
-            for (Real t : {c / q, q / a}) {
-                const Real y = o.y + t * d.y;
-                if (y >= 0.0_r && y <= 1.0_r) best = closer(best, candidate(t, t_max, 0));
+            const Real roots[2] = {c / q, q / a};
+            for (int i = 0; i < 2; ++i) {
+                const Real y = o.y + roots[i] * d.y;
+                if (y >= 0.0_r && y <= 1.0_r) crossings.t[i] = roots[i];
             }
         }
     }
+    if (!open) {
+        crossings.t[2] = cap_crossing(ray, 0.0_r, 1.0_r);
+        crossings.t[3] = cap_crossing(ray, 1.0_r, 1.0_r);
+    }
+    return crossings;
+}
+
+// The first crossing in (0, t_max): part 0 the side, 1 and 2 the caps; the earlier on equal t.
+inline ShapeHit cylinder_hit(const CylinderCrossings& crossings, Real t_max, bool open) {
+    ShapeHit best =
+        closer(candidate(crossings.t[0], t_max, 0), candidate(crossings.t[1], t_max, 0));
     if (open) return best;
-    best = closer(best, intersect_cap(ray, 0.0_r, 1.0_r, t_max, 1));
-    return closer(best, intersect_cap(ray, 1.0_r, 1.0_r, t_max, 2));
+    best = closer(best, candidate(crossings.t[2], t_max, 1));
+    return closer(best, candidate(crossings.t[3], t_max, 2));
+}
+
+inline ShapeHit intersect_cylinder(const Ray& ray, Real t_max, bool open = false) {
+    return cylinder_hit(cylinder_crossings(ray, open), t_max, open);
+}
+
+// cylinder_crossings (with caps) for four rays, each in its own cylinder's object space:
+// crossings[i] for lane i, bit for bit. In SSE, its operations in the same order lane by lane,
+// each lane's branches as masks; elsewhere, lane by lane.
+inline void cylinder_crossings4(const Rays4& rays, CylinderCrossings (&crossings)[4]) {
+#if GLINT_SIMD
+    const __m128 ox = _mm_load_ps(rays.origin[0]), oy = _mm_load_ps(rays.origin[1]),
+                 oz = _mm_load_ps(rays.origin[2]);
+    const __m128 dx = _mm_load_ps(rays.direction[0]), dy = _mm_load_ps(rays.direction[1]),
+                 dz = _mm_load_ps(rays.direction[2]);
+    const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f), nan = _mm_set1_ps(kNaN);
+    const auto square_sum = [](__m128 x, __m128 z) {
+        return _mm_add_ps(_mm_mul_ps(x, x), _mm_mul_ps(z, z));
+    };
+    const auto keep = [nan](__m128 mask, __m128 t) {
+        return _mm_or_ps(_mm_and_ps(mask, t), _mm_andnot_ps(mask, nan));
+    };
+    alignas(16) Real t[4][4];
+    // The side.
+    const __m128 a = square_sum(dx, dz);
+    const __m128 b = _mm_add_ps(_mm_mul_ps(ox, dx), _mm_mul_ps(oz, dz));
+    const __m128 c = _mm_sub_ps(square_sum(ox, oz), one);
+    const __m128 k = _mm_div_ps(b, a);
+    const __m128 cx = _mm_sub_ps(ox, _mm_mul_ps(k, dx));
+    const __m128 cz = _mm_sub_ps(oz, _mm_mul_ps(k, dz));
+    const __m128 discriminant = _mm_mul_ps(a, _mm_sub_ps(one, square_sum(cx, cz)));
+    const __m128 sign = _mm_set1_ps(-0.0f);
+    const __m128 root =
+        _mm_or_ps(_mm_andnot_ps(sign, _mm_sqrt_ps(discriminant)), _mm_and_ps(sign, b));
+    const __m128 q = _mm_xor_ps(_mm_add_ps(b, root), sign);
+    const __m128 crosses = _mm_and_ps(_mm_cmpgt_ps(a, zero), _mm_cmpge_ps(discriminant, zero));
+    const __m128 roots[2] = {_mm_div_ps(c, q), _mm_div_ps(q, a)};
+    for (int i = 0; i < 2; ++i) {
+        const __m128 y = _mm_add_ps(oy, _mm_mul_ps(roots[i], dy));
+        const __m128 within = _mm_and_ps(_mm_cmpge_ps(y, zero), _mm_cmple_ps(y, one));
+        _mm_store_ps(t[i], keep(_mm_and_ps(crosses, within), roots[i]));
+    }
+    // The caps: radius 1, so radius² = 1.
+    const __m128 heights[2] = {zero, one};
+    for (int i = 0; i < 2; ++i) {
+        const __m128 cap = _mm_div_ps(_mm_sub_ps(heights[i], oy), dy);
+        const __m128 x = _mm_add_ps(ox, _mm_mul_ps(cap, dx));
+        const __m128 z = _mm_add_ps(oz, _mm_mul_ps(cap, dz));
+        _mm_store_ps(t[2 + i], keep(_mm_cmpngt_ps(square_sum(x, z), one), cap));
+    }
+    for (int lane = 0; lane < 4; ++lane)
+        for (int i = 0; i < 4; ++i) crossings[lane].t[i] = t[i][lane];
+#else
+    for (int lane = 0; lane < 4; ++lane)
+        crossings[lane] = cylinder_crossings(rays.lane(lane), false);
+#endif
 }
 
 // The caps of cylinders and cones: y exact, normal ∓y.
