@@ -213,12 +213,13 @@ TEST(Kernel, EveryKernelTestsNodeBoxesExactlyAsTheScalarSlabTest) {
             met += __builtin_popcount(expected_mask[r]), lanes += kBvhWidth;
         }
         for (const Kernel kernel : kernels) {
-            const bool avx2 = kernel == Kernel::avx2;
+            // A single ray's node test: AVX2's in the AVX-512 kernel too.
+            const bool wide_lanes = kernel != Kernel::sse;
             for (int r = 0; r < count; ++r) {
                 const WideRay wide(rays[r]);
                 Real t_near[kBvhWidth];
-                const unsigned mask = avx2 ? enter_avx2(wide, n, t_max[r], t_near)
-                                           : wide.enter_sse(n, t_max[r], t_near);
+                const unsigned mask = wide_lanes ? enter_avx2(wide, n, t_max[r], t_near)
+                                                 : wide.enter_sse(n, t_max[r], t_near);
                 ASSERT_EQ(mask, expected_mask[r]) << name_of(kernel) << " node " << i;
                 for (int k = 0; k < kBvhWidth; ++k) {
                     if ((mask >> k) & 1) {
@@ -235,10 +236,18 @@ TEST(Kernel, EveryKernelTestsNodeBoxesExactlyAsTheScalarSlabTest) {
                 for (int r = 0; r < count; ++r)
                     if ((active >> r) & 1 && (expected_mask[r] >> k) & 1)
                         expected |= 1u << r, expected_t = std::min(expected_t, expected_near[r][k]);
-                ASSERT_EQ(avx2 ? enter_avx2(packet, n, k, active, t)
-                               : packet.enter_sse(n, k, active, t),
-                          expected)
-                    << name_of(kernel);
+                const auto enter = [&] {
+                    switch (kernel) {
+                    case Kernel::avx512:
+                        return enter_avx512(packet, n, k, active, t);
+                    case Kernel::avx2:
+                        return enter_avx2(packet, n, k, active, t);
+                    case Kernel::sse:
+                        break;
+                    }
+                    return packet.enter_sse(n, k, active, t);
+                };
+                ASSERT_EQ(enter(), expected) << name_of(kernel);
                 ASSERT_EQ(t, expected_t) << name_of(kernel);
             }
         }

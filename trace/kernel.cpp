@@ -15,6 +15,12 @@ bool processor_has(Kernel kernel) {
 #else
         return false;
 #endif
+    case Kernel::avx512:
+#if defined(__x86_64__) || defined(__i386__)
+        return __builtin_cpu_supports("avx512f");
+#else
+        return false;
+#endif
     }
     return false;
 }

@@ -13,17 +13,21 @@
 namespace glint {
 
 enum class Kernel : unsigned char {
-    sse,  // 128-bit: every x86-64 processor has it (the portable kernel)
-    avx2, // 256-bit: an eight-wide node's boxes, or eight rays of a packet, an instruction
+    sse,    // 128-bit: every x86-64 processor has it (the portable kernel)
+    avx2,   // 256-bit: an eight-wide node's boxes, or eight rays of a packet, an instruction
+    avx512, // 512-bit for packets: a child's box against all 16 rays an instruction; single
+            // rays as avx2 (a node is eight boxes wide)
 };
 
-template <> struct EnumNames<Kernel> { static constexpr auto names = name_table("sse", "avx2"); };
+template <> struct EnumNames<Kernel> {
+    static constexpr auto names = name_table("sse", "avx2", "avx512");
+};
 
 // The kernels this processor can run, narrowest first.
 std::vector<Kernel> available_kernels();
 
 // The kernel in use: the widest available, unless the environment variable GLINT_KERNEL names
-// another (sse or avx2). glint's commands refuse a name that is not a kernel, or one the
+// another (sse, avx2 or avx512). glint's commands refuse a name that is not a kernel, or one the
 // processor lacks, before any work (exit 2: app/main.cpp); elsewhere (the test and benchmark
 // programs run directly) such a name leaves the widest in use.
 Kernel active_kernel();

@@ -57,6 +57,10 @@ struct PacketRays;
                                                    Real t_max, Real (&t_near)[kBvhWidth]);
 [[gnu::target("avx2")]] inline std::uint32_t
 enter_avx2(const PacketRays& packet, const WideBvhNode& n, int k, std::uint32_t active, Real& t);
+// The AVX-512 kernel, for packets only (a single ray's node test is eight lanes, AVX2's): the
+// same operations sixteen rays an instruction, under the same rule for what it may share.
+[[gnu::target("avx512f")]] inline std::uint32_t
+enter_avx512(const PacketRays& packet, const WideBvhNode& n, int k, std::uint32_t active, Real& t);
 #endif
 
 // A ray prepared for wide nodes: SlabRay's reciprocals (±1e30 for axis-parallel directions),
@@ -116,15 +120,15 @@ struct WideRay {
 };
 
 // Up to kMaxPacket rays prepared for wide nodes, one lane per ray (structure of arrays), so that
-// a child's box is tested against four rays per SSE instruction (eight with AVX2). Lanes beyond
-// the packet have t_max = −inf: no box is entered before it.
+// a child's box is tested against four rays per SSE instruction (eight with AVX2, sixteen with
+// AVX-512). Lanes beyond the packet have t_max = −inf: no box is entered before it.
 struct PacketRays {
     using Mask = std::uint32_t; // bit r: ray r
     static_assert(kMaxPacket <= 32 && kMaxPacket % 8 == 0);
 
-    alignas(32) Real origin[3][kMaxPacket];
-    alignas(32) Real inverse_direction[3][kMaxPacket];
-    alignas(32) Real t_max[kMaxPacket];
+    alignas(64) Real origin[3][kMaxPacket];
+    alignas(64) Real inverse_direction[3][kMaxPacket];
+    alignas(64) Real t_max[kMaxPacket];
     Mask all;
 
     PacketRays(const Ray* rays, int count, const Real* limits)
@@ -238,6 +242,37 @@ enter_avx2(const PacketRays& packet, const WideBvhNode& n, int k, std::uint32_t 
     }
     return met;
 }
+
+// _mm512_min_ps and _mm512_max_ps: GCC 12 warns that their unused source is uninitialised (its
+// bug 105593); the masked forms with every lane chosen are the same instructions.
+[[gnu::target("avx512f")]] inline __m512 min16(__m512 a, __m512 b) {
+    return _mm512_mask_min_ps(a, 0xFFFF, a, b);
+}
+[[gnu::target("avx512f")]] inline __m512 max16(__m512 a, __m512 b) {
+    return _mm512_mask_max_ps(a, 0xFFFF, a, b);
+}
+
+[[gnu::target("avx512f")]] inline std::uint32_t
+enter_avx512(const PacketRays& packet, const WideBvhNode& n, int k, std::uint32_t active, Real& t) {
+    static_assert(kMaxPacket == 16);
+    __m512 t_in = _mm512_setzero_ps(), t_out = _mm512_set1_ps(kInfinity);
+    for (int a = 0; a < 3; ++a) {
+        const __m512 o = _mm512_load_ps(packet.origin[a]);
+        const __m512 inv = _mm512_load_ps(packet.inverse_direction[a]);
+        const __m512 t0 = _mm512_mul_ps(_mm512_sub_ps(_mm512_set1_ps(n.box[a][0][k]), o), inv);
+        const __m512 t1 = _mm512_mul_ps(_mm512_sub_ps(_mm512_set1_ps(n.box[a][1][k]), o), inv);
+        t_in = max16(t_in, min16(t0, t1));
+        t_out = min16(t_out, max16(t0, t1));
+    }
+    t_out = min16(_mm512_mul_ps(t_out, _mm512_set1_ps(kSlabWiden)), _mm512_load_ps(packet.t_max));
+    const std::uint32_t met =
+        _mm512_mask_cmp_ps_mask(static_cast<__mmask16>(active), t_in, t_out, _CMP_LE_OQ);
+    if (met == 0) return 0;
+    alignas(64) Real entry[kMaxPacket];
+    _mm512_store_ps(entry, t_in);
+    for (std::uint32_t l = met; l != 0; l &= l - 1) t = std::min(t, entry[__builtin_ctz(l)]);
+    return met;
+}
 #endif
 
 class WideBvh {
@@ -269,7 +304,7 @@ class WideBvh {
         const Ray& ray, Real& t_max, Counters& counters, VisitLeaf&& visit,
         PrefetchLeaf&& prefetch_leaf = [](std::uint32_t) {}) const {
 #if GLINT_SIMD
-        if (active_kernel() == Kernel::avx2)
+        if (active_kernel() != Kernel::sse) // AVX-512's node test for one ray is AVX2's
             return traverse_leaves_avx2(ray, t_max, counters, visit, prefetch_leaf);
 #endif
         traverse_leaves_with<false>(ray, t_max, counters, visit, prefetch_leaf);
@@ -301,15 +336,22 @@ class WideBvh {
     void traverse_packet(const Ray* rays, int count, const Real* t_max, Counters& counters,
                          VisitLeaf&& visit) const {
 #if GLINT_SIMD
-        if (active_kernel() == Kernel::avx2)
+        switch (active_kernel()) {
+        case Kernel::avx512:
+            return traverse_packet_avx512(rays, count, t_max, counters, visit);
+        case Kernel::avx2:
             return traverse_packet_avx2(rays, count, t_max, counters, visit);
+        case Kernel::sse:
+            break;
+        }
 #endif
-        traverse_packet_with<false>(rays, count, t_max, counters, visit);
+        traverse_packet_with<Kernel::sse>(rays, count, t_max, counters, visit);
     }
 
   private:
 #if GLINT_SIMD
-    // The traversals compiled for AVX2, their box tests inlined (enter_avx2).
+    // The traversals compiled for AVX2 and AVX-512, their box tests inlined (enter_avx2,
+    // enter_avx512).
     template <class Counters, class VisitLeaf, class PrefetchLeaf>
     [[gnu::target("avx2")]] void traverse_leaves_avx2(const Ray& ray, Real& t_max,
                                                       Counters& counters, VisitLeaf& visit,
@@ -319,7 +361,13 @@ class WideBvh {
     template <class Counters, class VisitLeaf>
     [[gnu::target("avx2")]] void traverse_packet_avx2(const Ray* rays, int count, const Real* t_max,
                                                       Counters& counters, VisitLeaf& visit) const {
-        traverse_packet_with<true>(rays, count, t_max, counters, visit);
+        traverse_packet_with<Kernel::avx2>(rays, count, t_max, counters, visit);
+    }
+    template <class Counters, class VisitLeaf>
+    [[gnu::target("avx512f")]] void traverse_packet_avx512(const Ray* rays, int count,
+                                                           const Real* t_max, Counters& counters,
+                                                           VisitLeaf& visit) const {
+        traverse_packet_with<Kernel::avx512>(rays, count, t_max, counters, visit);
     }
 #endif
 
@@ -383,8 +431,8 @@ class WideBvh {
         }
     }
 
-    // traverse_packet with the AVX2 kernel's box test or the portable one's.
-    template <bool kAvx2, class Counters, class VisitLeaf>
+    // traverse_packet with the box test of kernel K.
+    template <Kernel K, class Counters, class VisitLeaf>
     [[gnu::always_inline]] void traverse_packet_with(const Ray* rays, int count, const Real* t_max,
                                                      Counters& counters, VisitLeaf& visit) const {
         assert(count <= kMaxPacket);
@@ -412,7 +460,9 @@ class WideBvh {
                     Real t = kInfinity;
                     Mask met;
 #if GLINT_SIMD
-                    if constexpr (kAvx2)
+                    if constexpr (K == Kernel::avx512)
+                        met = enter_avx512(packet, n, k, active, t);
+                    else if constexpr (K == Kernel::avx2)
                         met = enter_avx2(packet, n, k, active, t);
                     else
 #endif
