@@ -146,7 +146,13 @@ struct PacketRays {
     // box in it, beyond its t_max: alone, it would have dropped it from its stack (pop).
     Mask reaching(Real t) const {
         Mask m = 0;
+#if GLINT_SIMD
+        const __m128 at = _mm_set1_ps(t);
+        for (int g = 0; g < kMaxPacket; g += 4)
+            m |= static_cast<Mask>(_mm_movemask_ps(_mm_cmpge_ps(_mm_load_ps(&t_max[g]), at))) << g;
+#else
         for (int r = 0; r < kMaxPacket; ++r) m |= Mask{t_max[r] >= t} << r;
+#endif
         return m;
     }
 
