@@ -15,10 +15,14 @@ constexpr std::uint32_t kParallelBelow = 4096; // subtrees smaller than this are
 
 struct Builder {
     std::span<const Bounds> bounds;
+    std::uint32_t block; // items a leaf tests together (BinaryBvh's constructor)
     std::vector<Vec3> centres;
     std::vector<std::uint32_t>& items;
     std::vector<BvhNode>& nodes;
     std::atomic<std::uint32_t> next_node{1};
+
+    // What the SAH counts a leaf of n items as: its blocks.
+    Real tests(std::uint32_t n) const { return static_cast<Real>((n + block - 1) / block); }
 
     void leaf(BvhNode& node, std::uint32_t begin, std::uint32_t end) {
         node.first = begin;
@@ -43,7 +47,7 @@ struct Builder {
         if (depth >= kSahDepth) return median_split(index, begin, end, depth, centroid_box);
 
         // Binned SAH over the centroids (Wald 2007): cost of a split ∝ A_left·N_left +
-        // A_right·N_right.
+        // A_right·N_right, N counted in blocks (tests()).
         const Vec3 extent = centroid_box.hi - centroid_box.lo;
         Real best_cost = kInfinity;
         int best_axis = -1, best_split = 0;
@@ -74,13 +78,14 @@ struct Builder {
                 left.extend(bin_box[b]);
                 n += bin_count[b];
                 if (n == 0 || right_count[b + 1] == 0) continue;
-                const Real cost = left.area() * n + right_area[b + 1] * right_count[b + 1];
+                const Real cost =
+                    left.area() * tests(n) + right_area[b + 1] * tests(right_count[b + 1]);
                 if (cost < best_cost) best_cost = cost, best_axis = axis, best_split = b;
             }
         }
-        // A leaf costs one test per item; a split its children's expected tests (the box tests of
+        // A leaf costs one test per block; a split its children's expected tests (the box tests of
         // the split are left out, which favours splitting; leaves stay small either way).
-        const Real leaf_cost = box.area() * count;
+        const Real leaf_cost = box.area() * tests(count);
         if (count <= kMaxLeafSize && (best_axis < 0 || best_cost >= leaf_cost))
             return leaf(node, begin, end);
         std::uint32_t middle;
@@ -152,12 +157,12 @@ BinaryBvh BinaryBvh::refitted(std::span<const Bounds> items) const {
     return moved;
 }
 
-BinaryBvh::BinaryBvh(std::span<const Bounds> item_bounds) {
+BinaryBvh::BinaryBvh(std::span<const Bounds> item_bounds, std::uint32_t block) {
     if (item_bounds.empty()) return;
     items_.resize(item_bounds.size());
     for (std::uint32_t i = 0; i < items_.size(); ++i) items_[i] = i;
     nodes_.resize(2 * item_bounds.size()); // a binary tree with n leaves at most has 2n − 1 nodes
-    Builder builder{item_bounds, {}, items_, nodes_};
+    Builder builder{item_bounds, block, {}, items_, nodes_};
     builder.centres.reserve(item_bounds.size());
     for (const Bounds& b : item_bounds) builder.centres.push_back(b.centre());
     builder.build(0, 0, static_cast<std::uint32_t>(item_bounds.size()), 0);

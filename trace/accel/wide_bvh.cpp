@@ -101,7 +101,7 @@ void align_leaves(std::vector<WideBvhNode>& nodes, std::vector<std::uint32_t>& i
 
 WideBvh::WideBvh(std::span<const Bounds> item_bounds, std::uint32_t leaf_alignment) {
     if (item_bounds.empty()) return;
-    const BinaryBvh tree(item_bounds);
+    const BinaryBvh tree(item_bounds, leaf_alignment);
     items_ = tree.items();
     nodes_.push_back(empty_node());
     const BvhNode& root = tree.nodes()[0];

@@ -286,7 +286,8 @@ class WideBvh {
     WideBvh() = default;
     // `leaf_alignment`: every leaf's first slot a multiple of it, the slots between leaves
     // padding (kEmptyChild in items()), so that a user may keep its items in blocks of that many
-    // side by side (a mesh's triangles, four to a SIMD block: trace/shapes/mesh.h).
+    // side by side (a mesh's triangles, four to a SIMD block: trace/shapes/mesh.h); the build
+    // then counts a leaf's cost in those blocks (BinaryBvh's `block`).
     explicit WideBvh(std::span<const Bounds> items, std::uint32_t leaf_alignment = 1);
 
     // This tree over new boxes of the same items (BinaryBvh::refitted's contract).
