@@ -376,7 +376,8 @@ Transform random_placement(std::mt19937& rng) {
 // cylinder_crossings on that ray, lane by lane, bit for bit: placements of every kind, from any
 // slot (reading into the padding), and rays aimed at one of the four cylinders' sides, cap
 // rims and cap centres, tangent to the side, along the axis (no side quadratic), from inside,
-// axis-parallel in world space, and with −0 coordinates. Half a million blocks in Release.
+// axis-parallel in world space, and with −0 coordinates. 480,000 rays, each on up to four
+// placements, in Release.
 TEST(Kernel, LeafLanesTakeRaysToObjectSpaceAndCrossCylindersExactlyAsTheSingleCode) {
     std::mt19937 rng(17);
     std::uniform_real_distribution<double> u(-1, 1);

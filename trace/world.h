@@ -169,7 +169,7 @@ class World {
     ShapeHit intersect_object(const Placed& object, const LazySlab& slab, Real t_max,
                               bool box_tested, const ShapeOf& shape_of) const;
     // The same without the box check: the shape's own intersection routine, on the ray in
-    // object space (taken there by the object's transform, or by the leaf columns' to_object4).
+    // object space (taken there by the object's transform, or its leaf copy's ToObject).
     template <class Counters>
     static ShapeHit intersect_shape(ShapeKind shape, const ShapeParams& params, const Ray& ray,
                                     Real t_max, Counters& counters);
@@ -257,8 +257,8 @@ class World {
     Accelerator accel_;
     // With the eight-wide BVH, its leaves' objects in its slot order, so that the objects a leaf
     // names are adjacent in memory (empty for other structures): of objects_[index], what its
-    // intersection reads beside its way to object space (the shape, the box a hit is checked
-    // against). Every object in the tree is bounded.
+    // intersection reads (the ray's way to object space, the shape, the box a hit is checked
+    // against), two thirds of an Object. Every object in the tree is bounded.
     struct LeafObject {
         ToObject to_object;
         std::uint32_t index;
@@ -269,9 +269,9 @@ class World {
         static constexpr bool bounded = true;
     };
     std::vector<LeafObject> leaf_objects_;
-    // Beside leaf_objects_, their ways to object space in structure of arrays, so that four of
-    // a leaf's objects are taken there at once, and its spheres and cylinders tested four at a
-    // time (leaf_shape_hit).
+    // Beside leaf_objects_, their ways to object space again, in structure of arrays, so that a
+    // leaf's spheres and cylinders are tested four at a time (leaf_shape_hit); the other shapes
+    // take the ray there one at a time, by the copy's ToObject.
     ToObjectColumns leaf_to_object_;
     void order_leaves();
     double build_seconds_ = 0;
