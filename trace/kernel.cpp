@@ -9,16 +9,13 @@ bool processor_has(Kernel kernel) {
     switch (kernel) {
     case Kernel::sse:
         return true;
+#if defined(__x86_64__) || defined(__i386__)
     case Kernel::avx2:
-#if defined(__x86_64__) || defined(__i386__)
         return __builtin_cpu_supports("avx2");
-#else
-        return false;
-#endif
     case Kernel::avx512:
-#if defined(__x86_64__) || defined(__i386__)
         return __builtin_cpu_supports("avx512f");
 #else
+    default: // no x86: only the portable kernel (SSE's arithmetic, lane by lane)
         return false;
 #endif
     }
