@@ -37,15 +37,17 @@ struct TileFigures {
     double primary = 0, shading = 0;
 };
 
-// The centres pass on one tile: its primary hits, kept for the tile alone (a frame's worth
-// would cost a whole image of first-touched pages before the pass), then its pixels shaded.
+// The centres pass on one tile: its primary hits, kept for the tile alone in the thread's tile
+// buffers (a frame's worth would cost a whole image of first-touched pages before the pass),
+// then its pixels shaded.
 TileFigures centres_tile(const World& world, const PrimarySource& source, const TileRect& r,
                          RenderResult& result, std::vector<std::uint64_t>* keys,
                          CentreObserver* observer) {
     TileFigures figures;
     Stopwatch watch;
     const std::size_t stride = static_cast<std::size_t>(r.x1 - r.x0);
-    std::vector<Hit> primary(r.pixels());
+    std::vector<Hit>& primary = tile_buffers().primary;
+    primary.resize(r.pixels()); // each one written by tile_primary_hits
     tile_primary_hits(world, source, r, primary.data(), stride, figures.stats);
     figures.primary = watch.lap();
     figures.rays = shade_tile(world, primary.data(), stride, r, result, keys, observer);
@@ -83,8 +85,10 @@ TileFigures grids_tile(const World& world, const PrimarySource& source,
     Stopwatch watch;
     const int width = world.camera().width(), n = world.settings().samples;
     const std::size_t grid = static_cast<std::size_t>(n) * n;
-    std::vector<std::size_t> pixels; // the tile's pixels to sample, in row order
-    std::vector<Hit> hits;           // their grids' primary hits, one grid after another
+    TileBuffers& buffers = tile_buffers();
+    std::vector<std::size_t>& pixels = buffers.pixels; // the tile's pixels to sample, in row order
+    std::vector<Hit>& hits = buffers.hits; // their grids' primary hits, one grid after another
+    pixels.clear(), hits.clear();
     for (int y = r.y0; y < r.y1; ++y) {
         for (int x = r.x0; x < r.x1; ++x) {
             const std::size_t i = static_cast<std::size_t>(y) * width + x;

@@ -26,8 +26,11 @@ PixelSample shade_pixel(const World& world, const Ray& ray, const Hit& primary,
     return sample;
 }
 
-TileLighting::TileLighting(const World& world, std::span<const Ray> rays, std::span<const Hit> hits)
-    : surfaces_(hits.size()), lights_(world.lights().size()), known_(lights_ > 0) {
+void TileLighting::prepare(const World& world, std::span<const Ray> rays,
+                           std::span<const Hit> hits) {
+    surfaces_.resize(hits.size()); // read only where a hit is found: left as they were
+    lights_ = world.lights().size();
+    known_ = lights_ > 0;
     for (std::size_t k = 0; k < hits.size(); ++k)
         if (hits[k].found()) surfaces_[k] = world.surface(rays[k], hits[k]);
     if (!known_) return;

@@ -38,7 +38,12 @@ PixelSample shade_pixel(const World& world, const Ray& ray, const Hit& primary,
 // by ray, bit for bit.
 class TileLighting {
   public:
-    TileLighting(const World& world, std::span<const Ray> rays, std::span<const Hit> hits);
+    TileLighting() = default;
+    TileLighting(const World& world, std::span<const Ray> rays, std::span<const Hit> hits) {
+        prepare(world, rays, hits);
+    }
+    // Prepares another group in the storage of the last, which it allocates again only to grow.
+    void prepare(const World& world, std::span<const Ray> rays, std::span<const Hit> hits);
     PreparedHit at(std::size_t k) const {
         return {&surfaces_[k], known_ ? &light_[k * lights_] : nullptr};
     }

@@ -22,21 +22,29 @@ RenderResult blank_result(const PinholeCamera& camera, int samples, bool aovs) {
     return result;
 }
 
+TileBuffers& tile_buffers() {
+    thread_local TileBuffers buffers;
+    return buffers;
+}
+
 RayCounts shade_tile(const World& world, const Hit* primary, std::size_t stride, const TileRect& r,
                      RenderResult& result, std::vector<std::uint64_t>* path_keys,
                      CentreObserver* observer) {
     const PinholeCamera& camera = world.camera();
     const int width = camera.width();
-    std::vector<std::size_t> pixels;
-    std::vector<Ray> rays;
-    std::vector<Hit> hits;
+    TileBuffers& buffers = tile_buffers();
+    std::vector<std::size_t>& pixels = buffers.pixels;
+    std::vector<Ray>& rays = buffers.rays;
+    std::vector<Hit>& hits = buffers.hits;
+    pixels.clear(), rays.clear(), hits.clear();
     for_each_in_blocks(r.x0, r.y0, r.x1, r.y1, [&](int x, int y) {
         pixels.push_back(static_cast<std::size_t>(y) * width + x);
         rays.push_back(camera.ray(x, y));
         hits.push_back(primary[static_cast<std::size_t>(y - r.y0) * stride +
                                static_cast<std::size_t>(x - r.x0)]);
     });
-    const TileLighting lighting(world, rays, hits);
+    TileLighting& lighting = buffers.lighting;
+    lighting.prepare(world, rays, hits);
     RayCounts counts;
     for (std::size_t k = 0; k < pixels.size(); ++k) {
         const std::size_t i = pixels[k];

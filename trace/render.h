@@ -34,6 +34,23 @@ inline void store_aovs(RenderResult& result, std::size_t i, const Hit& hit, Vec3
 // the AOVs where asked for.
 RenderResult blank_result(const PinholeCamera& camera, int samples, bool aovs);
 
+// A worker thread's buffers for the tile it works on, kept from tile to tile (tile_buffers()).
+// Allocated anew for each tile, they cost small scenes up to two thirds of their shading time:
+// glibc gives the free memory at the top of its heap back to the kernel once more than 128 KB
+// lie there, and the next tile's first touch of each of those pages is a page fault
+// (docs/PERFORMANCE.md, "Tile buffers").
+struct TileBuffers {
+    std::vector<Hit> primary;        // the centres pass: the tile's primary hits
+    std::vector<std::size_t> pixels; // the pixels being shaded, in the order shaded
+    std::vector<Ray> rays;           // their camera rays
+    std::vector<Hit> hits;           // their primary hits (the grids pass: grid after grid)
+    TileLighting lighting;           // their surfaces and shadow verdicts
+};
+
+// The calling thread's TileBuffers. A tile's work uses them until it returns; a thread works on
+// one tile at a time (nothing in a tile's work waits on other tasks, so none is run meanwhile).
+TileBuffers& tile_buffers();
+
 // Shades tile r's pixels from their primary hits (pixel (x, y)'s at primary[(y − r.y0)·stride +
 // (x − r.x0)], as tile_primary_hits leaves them) into `result`: colour, cut-off weight, id, AOVs
 // where kept, and with `path_keys` each pixel's RayTree::path_key; shows each to `observer`
