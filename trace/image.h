@@ -33,9 +33,19 @@ struct Image {
 
 // Linear float RGB, row-major, top row first: colour as the tracer computes it, kept in float
 // until a writer turns it into a file's format (PNG bytes below, OpenEXR in trace/exr.h).
+// Storage for a frame's buffers (UninitialisedAllocator): a block of kHugeStorage bytes or more
+// is aligned to 2 MB and offered to the kernel for transparent huge pages (Linux's
+// madvise(MADV_HUGEPAGE), where it has them), so that the first touch of a 1080p frame's 25 MB
+// of pixels takes a dozen page faults instead of six thousand (docs/PERFORMANCE.md, "Tile
+// buffers"); a smaller one comes from operator new.
+inline constexpr std::size_t kHugeStorage = std::size_t{4} << 20;
+void* allocate_frame_storage(std::size_t bytes);
+void free_frame_storage(void* block, std::size_t bytes);
+
 // An allocator whose containers leave new elements uninitialised (resize without a value): a
 // frame's pixels are all written by its passes, in parallel, so their pages are first touched
 // there, not by a serial memset before (which costs more than the writes on a virtual machine).
+// Its storage is allocate_frame_storage's.
 template <class T> struct UninitialisedAllocator : std::allocator<T> {
     template <class U> struct rebind {
         using other = UninitialisedAllocator<U>;
@@ -46,6 +56,8 @@ template <class T> struct UninitialisedAllocator : std::allocator<T> {
     template <class U, class... Args> void construct(U* p, Args&&... args) {
         ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
     }
+    T* allocate(std::size_t n) { return static_cast<T*>(allocate_frame_storage(n * sizeof(T))); }
+    void deallocate(T* p, std::size_t n) noexcept { free_frame_storage(p, n * sizeof(T)); }
 };
 
 struct FloatImage {
