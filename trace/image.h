@@ -31,13 +31,11 @@ struct Image {
     }
 };
 
-// Linear float RGB, row-major, top row first: colour as the tracer computes it, kept in float
-// until a writer turns it into a file's format (PNG bytes below, OpenEXR in trace/exr.h).
 // Storage for a frame's buffers (UninitialisedAllocator): a block of kHugeStorage bytes or more
 // is aligned to 2 MB and offered to the kernel for transparent huge pages (Linux's
 // madvise(MADV_HUGEPAGE), where it has them), so that the first touch of a 1080p frame's 25 MB
 // of pixels takes a dozen page faults instead of six thousand (docs/PERFORMANCE.md, "Tile
-// buffers"); a smaller one comes from operator new.
+// buffers and huge pages"); a smaller one comes from operator new.
 inline constexpr std::size_t kHugeStorage = std::size_t{4} << 20;
 void* allocate_frame_storage(std::size_t bytes);
 void free_frame_storage(void* block, std::size_t bytes);
@@ -60,6 +58,8 @@ template <class T> struct UninitialisedAllocator : std::allocator<T> {
     void deallocate(T* p, std::size_t n) noexcept { free_frame_storage(p, n * sizeof(T)); }
 };
 
+// Linear float RGB, row-major, top row first: colour as the tracer computes it, kept in float
+// until a writer turns it into a file's format (PNG bytes below, OpenEXR in trace/exr.h).
 struct FloatImage {
     int width = 0;
     int height = 0;

@@ -38,7 +38,7 @@ RenderResult blank_result(const PinholeCamera& camera, int samples, bool aovs);
 // Allocated anew for each tile, they cost small scenes up to two thirds of their shading time:
 // glibc gives the free memory at the top of its heap back to the kernel once more than 128 KB
 // lie there, and the next tile's first touch of each of those pages is a page fault
-// (docs/PERFORMANCE.md, "Tile buffers").
+// (docs/PERFORMANCE.md, "Tile buffers and huge pages").
 struct TileBuffers {
     std::vector<Hit> primary;        // the centres pass: the tile's primary hits
     std::vector<std::size_t> pixels; // the pixels being shaded, in the order shaded
