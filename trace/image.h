@@ -40,11 +40,20 @@ inline constexpr std::size_t kHugeStorage = std::size_t{4} << 20;
 void* allocate_frame_storage(std::size_t bytes);
 void free_frame_storage(void* block, std::size_t bytes);
 
+// std::allocator with allocate_frame_storage's storage: for a frame's per-pixel buffers.
+template <class T> struct FrameAllocator : std::allocator<T> {
+    template <class U> struct rebind { using other = FrameAllocator<U>; };
+    FrameAllocator() = default;
+    template <class U> FrameAllocator(const FrameAllocator<U>&) noexcept {}
+    T* allocate(std::size_t n) { return static_cast<T*>(allocate_frame_storage(n * sizeof(T))); }
+    void deallocate(T* p, std::size_t n) noexcept { free_frame_storage(p, n * sizeof(T)); }
+};
+template <class T> using FrameVector = std::vector<T, FrameAllocator<T>>;
+
 // An allocator whose containers leave new elements uninitialised (resize without a value): a
 // frame's pixels are all written by its passes, in parallel, so their pages are first touched
 // there, not by a serial memset before (which costs more than the writes on a virtual machine).
-// Its storage is allocate_frame_storage's.
-template <class T> struct UninitialisedAllocator : std::allocator<T> {
+template <class T> struct UninitialisedAllocator : FrameAllocator<T> {
     template <class U> struct rebind {
         using other = UninitialisedAllocator<U>;
     };
@@ -54,8 +63,6 @@ template <class T> struct UninitialisedAllocator : std::allocator<T> {
     template <class U, class... Args> void construct(U* p, Args&&... args) {
         ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
     }
-    T* allocate(std::size_t n) { return static_cast<T*>(allocate_frame_storage(n * sizeof(T))); }
-    void deallocate(T* p, std::size_t n) noexcept { free_frame_storage(p, n * sizeof(T)); }
 };
 
 // Linear float RGB, row-major, top row first: colour as the tracer computes it, kept in float

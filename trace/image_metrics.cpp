@@ -61,7 +61,7 @@ Image false_colour(const std::vector<std::uint32_t>& ids, int width, int height)
     return out;
 }
 
-double id_agreement(const std::vector<std::uint32_t>& a, const std::vector<std::uint32_t>& b) {
+double id_agreement(std::span<const std::uint32_t> a, std::span<const std::uint32_t> b) {
     std::size_t same = 0;
     for (std::size_t i = 0; i < a.size(); ++i) same += a[i] == b[i];
     return a.empty() ? 1.0 : static_cast<double>(same) / static_cast<double>(a.size());

@@ -3,6 +3,7 @@
 
 #include "trace/image.h"
 
+#include <span>
 #include <vector>
 
 namespace glint {
@@ -34,6 +35,6 @@ Image false_colour(const std::vector<std::uint32_t>& ids, int width, int height)
 
 // Fraction of pixels whose primary hits name the same object (per pixel, row-major; both
 // missing counts as agreeing).
-double id_agreement(const std::vector<std::uint32_t>& a, const std::vector<std::uint32_t>& b);
+double id_agreement(std::span<const std::uint32_t> a, std::span<const std::uint32_t> b);
 
 } // namespace glint
