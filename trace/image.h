@@ -31,7 +31,7 @@ struct Image {
     }
 };
 
-// Storage for a frame's buffers (UninitialisedAllocator): a block of kHugeStorage bytes or more
+// Storage for a frame's buffers (FrameAllocator): a block of kHugeStorage bytes or more
 // is aligned to 2 MB and offered to the kernel for transparent huge pages (Linux's
 // madvise(MADV_HUGEPAGE), where it has them), so that the first touch of a 1080p frame's 25 MB
 // of pixels takes a dozen page faults instead of six thousand (docs/PERFORMANCE.md, "Tile
