@@ -14,11 +14,14 @@ namespace glint {
 inline namespace GLINT_PRECISION {
 
 // Four triangles side by side, structure of arrays: corner k's coordinate along axis a of the
-// triangle in lane i is p[k][a][i]. 144 bytes in float: one triangle test of four lanes loads
-// nine vectors and nothing else (no index, no vertex lookup).
+// triangle in lane i is p[k][a][i]. 160 bytes in float: one triangle test of four lanes loads
+// nine vectors and nothing else (no index, no vertex lookup), and a lane that is hit finds its
+// triangle's index beside them, in the cache lines just read (as Embree's blocks keep their
+// primitive ids) rather than in a separate slot → triangle table.
 inline constexpr std::uint32_t kTriangleLanes = 4;
 struct alignas(16) TriangleBlock {
     Real p[3][3][kTriangleLanes];
+    std::uint32_t triangle[kTriangleLanes]; // its index in Mesh::triangles; padding: kEmptyChild
     Vec3 corner(int k, std::uint32_t lane) const {
         return {p[k][0][lane], p[k][1][lane], p[k][2][lane]};
     }
@@ -34,9 +37,9 @@ struct Mesh {
     // Over the triangles, object space; every leaf starts at a multiple of kTriangleLanes, so
     // that its triangles fill whole blocks (a leaf of up to four is one block).
     WideBvh bvh;
-    // The corners of the triangle in slot s in blocks[s / 4], lane s % 4: in the BVH's slot
-    // order where there is one (slot s holds triangle bvh.items()[s]; padding slots hold a
-    // degenerate triangle that no leaf names), else in triangle order.
+    // The corners and index of the triangle in slot s in blocks[s / 4], lane s % 4: in the
+    // BVH's slot order where there is one (slot s holds triangle bvh.items()[s]; padding slots
+    // hold a degenerate triangle that no leaf names), else in triangle order.
     std::vector<TriangleBlock> blocks;
     Vec3 corner(std::uint32_t slot, int k) const {
         return blocks[slot / kTriangleLanes].corner(k, slot % kTriangleLanes);
@@ -174,13 +177,16 @@ inline Mesh prepare_mesh(const TriangleMesh& given) {
     if (mesh.triangles.size() > 8) mesh.bvh = WideBvh(triangle_bounds(mesh), kTriangleLanes);
     const bool tree = !mesh.bvh.nodes().empty();
     const std::size_t slots = tree ? mesh.bvh.items().size() : mesh.triangles.size();
-    mesh.blocks.assign((slots + kTriangleLanes - 1) / kTriangleLanes, TriangleBlock{});
+    TriangleBlock padding{}; // all corners 0
+    std::fill(std::begin(padding.triangle), std::end(padding.triangle), kEmptyChild);
+    mesh.blocks.assign((slots + kTriangleLanes - 1) / kTriangleLanes, padding);
     for (std::uint32_t slot = 0; slot < slots; ++slot) {
         const std::uint32_t triangle = tree ? mesh.bvh.items()[slot] : slot;
-        if (triangle == kEmptyChild) continue; // padding: all corners 0
+        if (triangle == kEmptyChild) continue;
         const glm::uvec3 t = mesh.triangles[triangle];
         const Vec3 corners[3] = {mesh.vertices[t.x], mesh.vertices[t.y], mesh.vertices[t.z]};
         TriangleBlock& block = mesh.blocks[slot / kTriangleLanes];
+        block.triangle[slot % kTriangleLanes] = triangle;
         for (int k = 0; k < 3; ++k)
             for (int a = 0; a < 3; ++a) block.p[k][a][slot % kTriangleLanes] = corners[k][a];
     }
@@ -194,21 +200,20 @@ inline void prefetch_block(const Mesh& mesh, std::uint32_t first) {
 
 // The triangles in slots [begin, end) (begin a multiple of kTriangleLanes) for one ray, a block
 // at a time: a triangle replaces `best` when it is hit in (0, t_max) nearer, or as near with a
-// lower triangle index (`triangle(slot)`). The one test of intersect_mesh and
-// intersect_mesh_packet.
-template <class Counters, class TriangleOf>
+// lower triangle index. The one test of intersect_mesh and intersect_mesh_packet.
+template <class Counters>
 [[gnu::always_inline]] inline void
 consider_triangles(const Mesh& mesh, std::uint32_t begin, std::uint32_t end,
-                   const TriangleOf& triangle_of, const WatertightRay& ray, Real t_max,
-                   ShapeHit& best, Counters& counters) {
+                   const WatertightRay& ray, Real t_max, ShapeHit& best, Counters& counters) {
     for (std::uint32_t first = begin; first < end; first += kTriangleLanes) {
         const std::uint32_t lanes = std::min(kTriangleLanes, end - first);
+        const TriangleBlock& block = mesh.blocks[first / kTriangleLanes];
         TriangleHit hits[kTriangleLanes];
-        intersect_triangles(mesh.blocks[first / kTriangleLanes], lanes, ray, hits);
+        intersect_triangles(block, lanes, ray, hits);
         for (std::uint32_t i = 0; i < lanes; ++i) {
             counters.primitive();
             const TriangleHit& h = hits[i];
-            const std::uint32_t triangle = triangle_of(first + i);
+            const std::uint32_t triangle = block.triangle[i];
             if (h.t > 0 && h.t < t_max && (h.t < best.t || (h.t == best.t && triangle < best.part)))
                 best = {h.t, triangle, h.u, h.v};
         }
@@ -226,21 +231,18 @@ ShapeHit intersect_mesh(const Mesh& mesh, const Ray& ray, Real t_max, Counters& 
     const WatertightRay prepared(ray); // once per ray, not per triangle
     Real box_limit = loose(t_max);
     if (!mesh.bvh.nodes().empty()) {
-        const std::uint32_t* triangles = mesh.bvh.items().data();
-        const auto triangle_of = [triangles](std::uint32_t slot) { return triangles[slot]; };
         mesh.bvh.traverse_leaves(
             ray, box_limit, counters,
             [&](std::uint32_t begin, std::uint32_t end, Real& limit) {
-                consider_triangles(mesh, begin, end, triangle_of, prepared, t_max, best, counters);
+                consider_triangles(mesh, begin, end, prepared, t_max, best, counters);
                 limit = loose(std::min(best.t, t_max));
                 return false;
             },
             [&](std::uint32_t first) { prefetch_block(mesh, first); });
     } else {
         if (!SlabRay(ray).hits(mesh.bounds, box_limit)) return {};
-        const auto triangle_of = [](std::uint32_t slot) { return slot; };
-        consider_triangles(mesh, 0, static_cast<std::uint32_t>(mesh.triangles.size()), triangle_of,
-                           prepared, t_max, best, counters);
+        consider_triangles(mesh, 0, static_cast<std::uint32_t>(mesh.triangles.size()), prepared,
+                           t_max, best, counters);
     }
     return best;
 }
@@ -260,13 +262,11 @@ void intersect_mesh_packet(const Mesh& mesh, const Ray* rays, int count, const R
     std::optional<WatertightRay> prepared[kMaxPacket]; // made on a ray's first leaf
     Real box_limit[kMaxPacket];
     for (int r = 0; r < count; ++r) best[r] = {}, box_limit[r] = loose(t_max[r]);
-    const std::uint32_t* triangles = mesh.bvh.items().data();
-    const auto triangle_of = [triangles](std::uint32_t slot) { return triangles[slot]; };
     mesh.bvh.traverse_packet(rays, count, box_limit, counters,
                              [&](int r, std::uint32_t begin, std::uint32_t end, Real& limit) {
                                  if (!prepared[r]) prepared[r].emplace(rays[r]);
-                                 consider_triangles(mesh, begin, end, triangle_of, *prepared[r],
-                                                    t_max[r], best[r], counters);
+                                 consider_triangles(mesh, begin, end, *prepared[r], t_max[r],
+                                                    best[r], counters);
                                  limit = loose(std::min(best[r].t, t_max[r]));
                                  return false;
                              });
