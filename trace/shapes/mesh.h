@@ -193,7 +193,7 @@ inline Mesh prepare_mesh(const TriangleMesh& given) {
     return mesh;
 }
 
-// Asks for the first block of the leaf at slot `first` (its 144 bytes) to be fetched.
+// Asks for the first block of the leaf at slot `first` (its 160 bytes) to be fetched.
 inline void prefetch_block(const Mesh& mesh, std::uint32_t first) {
     prefetch_bytes(&mesh.blocks[first / kTriangleLanes], sizeof(TriangleBlock));
 }
