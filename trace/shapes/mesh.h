@@ -5,6 +5,7 @@
 #include "trace/bounds.h"
 #include "trace/shapes/shape.h"
 
+#include <algorithm>
 #include <array>
 #include <limits>
 #include <optional>
