@@ -32,10 +32,13 @@ struct SlabRay {
     Vec3 inverse_direction;
 
     explicit SlabRay(const Ray& ray) : origin(ray.origin) {
-        for (int a = 0; a < 3; ++a) {
-            const Real inv = 1.0_r / ray.direction[a];
-            inverse_direction[a] = std::isinf(inv) ? std::copysign(1e30_r, inv) : inv;
-        }
+        for (int a = 0; a < 3; ++a) inverse_direction[a] = reciprocal(ray.direction[a]);
+    }
+
+    // 1/d, or ±1e30 where d is ±0: a finite stand-in, so that 0 · it is 0, never NaN.
+    static Real reciprocal(Real d) {
+        const Real inv = 1.0_r / d;
+        return std::isinf(inv) ? std::copysign(1e30_r, inv) : inv;
     }
 
     // The ray's segment inside b, clipped to [0, t_max]; false when it is empty. Conservative:
