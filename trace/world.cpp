@@ -119,10 +119,12 @@ void World::order_leaves() {
 template <class Counters, class Visit>
 void World::traverse(const Ray& ray, Real& t_max, Counters& counters, Visit&& visit) const {
     if (const WideBvh* bvh = accel_.wide_bvh()) {
-        bvh->traverse_leaves(ray, t_max, counters,
-                             [&](std::uint32_t begin, std::uint32_t end, Real& limit) {
-                                 return visit_leaf(ray, begin, end, limit, counters, visit);
-                             });
+        bvh->traverse_leaves(
+            ray, t_max, counters,
+            [&](std::uint32_t begin, std::uint32_t end, Real& limit) {
+                return visit_leaf(ray, begin, end, limit, counters, visit);
+            },
+            [this](std::uint32_t first) { prefetch_leaf(first); });
         return;
     }
     accel_.traverse(ray, t_max, counters, [&](std::uint32_t item, Real& limit) {
