@@ -107,14 +107,18 @@ inline TriangleHit intersect_triangle(Vec3 p0, Vec3 p1, Vec3 p2, const Ray& ray)
     return intersect_triangle(p0, p1, p2, WatertightRay(ray));
 }
 
-// Up to four triangles of a block (lanes [0, lanes)) against one ray: hits[i] =
-// intersect_triangle(the corners of lane i, ray), bit for bit. With SSE in float, the test's
-// operations in the same order lane by lane, four lanes an instruction; a lane whose edge
-// functions meet a zero (the ray through an edge or a vertex in float) is answered by the
-// single test, which decides it in double. Elsewhere (double precision), one lane at a time.
-[[gnu::always_inline]] inline void intersect_triangles(const TriangleBlock& block,
-                                                       std::uint32_t lanes, const WatertightRay& r,
-                                                       TriangleHit (&hits)[kTriangleLanes]) {
+// Up to four triangles of a block (lanes [0, lanes)) against one ray. Returns the lanes that
+// may be hit, bit i for lane i: for those, hits[i] = intersect_triangle(the corners of lane i,
+// ray), bit for bit; every other lane below `lanes` is missed (intersect_triangle's
+// TriangleHit{}) and its hits[i] is left as it was. With SSE in float, the test's operations in
+// the same order lane by lane, four lanes an instruction, and the divisions only when a lane
+// is left after the edge functions' signs (most blocks a ray reaches are missed: their three
+// divisions were a fifth of gears-4's triangle tests); a lane whose edge functions meet a zero
+// (the ray through an edge or a vertex in float) is answered by the single test, which decides
+// it in double. Elsewhere (double precision), one lane at a time.
+[[nodiscard, gnu::always_inline]] inline unsigned
+intersect_triangles(const TriangleBlock& block, std::uint32_t lanes, const WatertightRay& r,
+                    TriangleHit (&hits)[kTriangleLanes]) {
 #if GLINT_SIMD
     const int axis[3] = {r.kx, r.ky, r.kz};
     __m128 x[3], y[3], z[3]; // corner k relative to the origin, sheared: x, y; and along kz
@@ -140,6 +144,10 @@ inline TriangleHit intersect_triangle(Vec3 p0, Vec3 p1, Vec3 p2, const Ray& ray)
         _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(u, zero), _mm_cmpgt_ps(v, zero)), _mm_cmpgt_ps(w, zero));
     const __m128 det = _mm_add_ps(_mm_add_ps(u, v), w);
     const __m128 missed = _mm_or_ps(_mm_and_ps(negative, positive), _mm_cmpeq_ps(det, zero));
+    const unsigned all = (1u << lanes) - 1;
+    const unsigned edges = static_cast<unsigned>(_mm_movemask_ps(on_edge)) & all;
+    const unsigned crossed = ~static_cast<unsigned>(_mm_movemask_ps(missed)) & all & ~edges;
+    if ((crossed | edges) == 0) return 0;
     const __m128 sz = _mm_set1_ps(r.sz);
     const __m128 t = _mm_div_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(u, sz), z[0]),
                                                       _mm_mul_ps(_mm_mul_ps(v, sz), z[1])),
@@ -151,14 +159,20 @@ inline TriangleHit intersect_triangle(Vec3 p0, Vec3 p1, Vec3 p2, const Ray& ray)
                  _mm_or_ps(_mm_andnot_ps(missed, t), _mm_and_ps(missed, _mm_set1_ps(kInfinity))));
     _mm_store_ps(b1, _mm_andnot_ps(missed, _mm_div_ps(v, det)));
     _mm_store_ps(b2, _mm_andnot_ps(missed, _mm_div_ps(w, det)));
-    const unsigned edges = static_cast<unsigned>(_mm_movemask_ps(on_edge));
     for (std::uint32_t i = 0; i < lanes; ++i)
-        hits[i] = (edges >> i) & 1 ? intersect_triangle(block.corner(0, i), block.corner(1, i),
-                                                        block.corner(2, i), r)
-                                   : TriangleHit{t_out[i], b1[i], b2[i]};
+        if ((edges >> i) & 1)
+            hits[i] =
+                intersect_triangle(block.corner(0, i), block.corner(1, i), block.corner(2, i), r);
+        else if ((crossed >> i) & 1)
+            hits[i] = {t_out[i], b1[i], b2[i]};
+    return crossed | edges;
 #else
-    for (std::uint32_t i = 0; i < lanes; ++i)
+    unsigned may_hit = 0;
+    for (std::uint32_t i = 0; i < lanes; ++i) {
         hits[i] = intersect_triangle(block.corner(0, i), block.corner(1, i), block.corner(2, i), r);
+        may_hit |= unsigned{hits[i].t < kInfinity} << i;
+    }
+    return may_hit;
 #endif
 }
 
@@ -210,9 +224,10 @@ consider_triangles(const Mesh& mesh, std::uint32_t begin, std::uint32_t end,
         const std::uint32_t lanes = std::min(kTriangleLanes, end - first);
         const TriangleBlock& block = mesh.blocks[first / kTriangleLanes];
         TriangleHit hits[kTriangleLanes];
-        intersect_triangles(block, lanes, ray, hits);
-        for (std::uint32_t i = 0; i < lanes; ++i) {
-            counters.primitive();
+        const unsigned may_hit = intersect_triangles(block, lanes, ray, hits);
+        for (std::uint32_t i = 0; i < lanes; ++i) counters.primitive();
+        for (unsigned m = may_hit; m != 0; m &= m - 1) {
+            const unsigned i = static_cast<unsigned>(__builtin_ctz(m));
             const TriangleHit& h = hits[i];
             const std::uint32_t triangle = block.triangle[i];
             if (h.t > 0 && h.t < t_max && (h.t < best.t || (h.t == best.t && triangle < best.part)))
