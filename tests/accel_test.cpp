@@ -468,6 +468,55 @@ TEST(Accel, MeshHitsAreTheSameWhateverTheVisitingOrder) {
     EXPECT_GT(ties, 1000) << "too few ties to mean much";
 }
 
+// A shadow ray's question of a mesh (Wanted::any) is answered at the first leaf holding a hit:
+// found exactly when the nearest hit is, and then a true hit (its triangle's own test gives it,
+// bit for bit) in (0, t_max), no nearer than the nearest. A soup of 2,000 random triangles in a
+// unit cube, so that rays cross several; limits infinite, random, and exactly at the nearest
+// hit (which is then outside the open interval: neither may find it).
+TEST(Accel, MeshAnyHitIsFoundExactlyWhenTheNearestIs) {
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<float> u(0, 1), wide(-2, 3);
+    TriangleMesh soup;
+    for (std::uint32_t i = 0; i < 2000; ++i) {
+        const Vec3 centre(u(rng), u(rng), u(rng));
+        for (int k = 0; k < 3; ++k) {
+            const Vec3 corner = centre + 0.15f * Vec3(u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f);
+            soup.vertices.push_back(glm::vec3(corner));
+        }
+        soup.triangles.push_back({3 * i, 3 * i + 1, 3 * i + 2});
+    }
+    const Mesh mesh = prepare_mesh(soup);
+    ASSERT_FALSE(mesh.bvh.nodes().empty());
+    int found = 0, farther = 0;
+    for (int k = 0; k < 50000; ++k) {
+        const Vec3 origin(wide(rng), wide(rng), wide(rng));
+        const Ray ray{origin, Vec3(u(rng), u(rng), u(rng)) - origin};
+        NoCounters none;
+        const ShapeHit nearest = intersect_mesh(mesh, ray, kInfinity, none);
+        Real t_max = kInfinity;
+        if (k % 3 == 1) t_max = 4 * u(rng);
+        if (k % 3 == 2 && nearest.found()) t_max = nearest.t;
+        const ShapeHit expected = intersect_mesh(mesh, ray, t_max, none);
+        const ShapeHit any = intersect_mesh(mesh, ray, t_max, none, Wanted::any);
+        ASSERT_EQ(any.found(), expected.found()) << "ray " << k;
+        if (!any.found()) continue;
+        ++found;
+        farther += any.t > expected.t;
+        ASSERT_GT(any.t, 0) << "ray " << k;
+        ASSERT_LT(any.t, t_max) << "ray " << k;
+        ASSERT_GE(any.t, expected.t) << "ray " << k;
+        const glm::uvec3 t = mesh.triangles[any.part];
+        const TriangleHit own =
+            intersect_triangle(mesh.vertices[t.x], mesh.vertices[t.y], mesh.vertices[t.z], ray);
+        ASSERT_EQ(own.t, any.t) << "ray " << k;
+        ASSERT_EQ(own.u, any.u) << "ray " << k;
+        ASSERT_EQ(own.v, any.v) << "ray " << k;
+    }
+    EXPECT_GT(found, 10000) << "too few hits to mean much";
+    // Nearest leaf first, the first hit is mostly the nearest; 1,237 of 26,979 were not.
+    EXPECT_GT(farther, 500) << "too few first hits beyond the nearest to mean much";
+}
+
 // The item buffer's packets (World::intersect_one_packet, the exact resolve's 4×4 blocks that
 // name one object): each ray gets intersect_one's answer bit for bit (t, part, u, v), for every
 // shape (a mesh through its BVH as a packet, the others ray by ray) and every fill of a packet.

@@ -143,23 +143,25 @@ void World::traverse(const Ray& ray, Real& t_max, Counters& counters, Visit&& vi
 
 template <class Placed, class ShapeOf>
 ShapeHit World::intersect_object(const Placed& object, const LazySlab& slab, Real t_max,
-                                 bool box_tested, const ShapeOf& shape_of) const {
-    const ShapeHit hit = shape_of(t_max);
+                                 bool box_tested, const ShapeOf& shape_of, Wanted wanted) const {
+    const ShapeHit hit = shape_of(t_max, wanted);
     return box_tested || within_box(object, hit, slab, t_max) ? hit : ShapeHit{};
 }
 
 template <class Counters>
 ShapeHit World::intersect_shape(ShapeKind shape, const ShapeParams& params, const Ray& ray,
-                                Real t_max, Counters& counters) {
+                                Real t_max, Counters& counters, Wanted wanted) {
+    if (shape == ShapeKind::mesh) // the one shape with more than one hit to choose from cheaply
+        return intersect_mesh(*params.mesh, ray, t_max, counters, wanted);
     return visit_shape(shape,
                        [&]<class S>(S) { return S::intersect(params, ray, t_max, counters); });
 }
 
 template <class Counters>
 auto World::shape_of(const Object& object, const Ray& ray, Counters& counters) const {
-    return [&object, &ray, &counters](Real t_max) {
+    return [&object, &ray, &counters](Real t_max, Wanted wanted) {
         return intersect_shape(object.shape, object.params, object.transform.to_object(ray), t_max,
-                               counters);
+                               counters, wanted);
     };
 }
 
@@ -168,9 +170,9 @@ auto World::shape_of(const Object& object, const Ray& ray, Counters& counters) c
 // on first use (LeafLanes); any other object in other_leaf_shape_hit.
 template <class Counters>
 ShapeHit World::leaf_shape_hit(std::uint32_t slot, const Ray& ray, Real t_max, LeafLanes& lanes,
-                               Counters& counters) const {
+                               Counters& counters, Wanted wanted) const {
     const LeafObject& leaf = leaf_objects_[slot];
-    if (!leaf.sphere4) return other_leaf_shape_hit(leaf, slot, ray, t_max, lanes, counters);
+    if (!leaf.sphere4) return other_leaf_shape_hit(leaf, slot, ray, t_max, lanes, counters, wanted);
     if (slot < lanes.sphere_first || slot >= lanes.sphere_end) {
         const ToObjectColumns& c = leaf_to_object_;
         sphere_roots4(ray, c.offset(0, slot), c.offset(1, slot), c.offset(2, slot),
@@ -187,7 +189,7 @@ ShapeHit World::leaf_shape_hit(std::uint32_t slot, const Ray& ray, Real t_max, L
 template <class Counters>
 [[gnu::noinline]] ShapeHit World::other_leaf_shape_hit(const LeafObject& leaf, std::uint32_t slot,
                                                        const Ray& ray, Real t_max, LeafLanes& lanes,
-                                                       Counters& counters) const {
+                                                       Counters& counters, Wanted wanted) const {
     if (leaf.shape == ShapeKind::cylinder) {
         if (slot < lanes.cylinder_first || slot >= lanes.cylinder_end) {
             Rays4 local;
@@ -197,7 +199,7 @@ template <class Counters>
         }
         return cylinder_hit(lanes.crossings[slot - lanes.cylinder_first], t_max, leaf.params.open);
     }
-    return intersect_shape(leaf.shape, leaf.params, leaf.to_object(ray), t_max, counters);
+    return intersect_shape(leaf.shape, leaf.params, leaf.to_object(ray), t_max, counters, wanted);
 }
 
 template <class Counters, class Visit>
@@ -207,8 +209,8 @@ bool World::visit_leaf(const Ray& ray, std::uint32_t begin, std::uint32_t end, R
     for (std::uint32_t slot = begin; slot < end; ++slot) {
         counters.primitive();
         const LeafObject& leaf = leaf_objects_[slot];
-        const auto shape = [&, slot](Real limit) {
-            return leaf_shape_hit(slot, ray, limit, lanes, counters);
+        const auto shape = [&, slot](Real limit, Wanted wanted) {
+            return leaf_shape_hit(slot, ray, limit, lanes, counters, wanted);
         };
         if (visit(leaf.index, leaf, t_max, shape)) return true;
     }
@@ -285,7 +287,8 @@ template <class Placed, class ShapeOf, class Blocks>
 bool World::blocks_ray(const LazySlab& slab, Real t_max, std::uint32_t skip, std::uint32_t index,
                        const Placed& object, bool box_tested, const ShapeOf& shape_of,
                        const Blocks& blocks) const {
-    return index != skip && intersect_object(object, slab, t_max, box_tested, shape_of).found() &&
+    return index != skip &&
+           intersect_object(object, slab, t_max, box_tested, shape_of, Wanted::any).found() &&
            blocks(index);
 }
 

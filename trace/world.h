@@ -163,16 +163,18 @@ class World {
   private:
     // The object's first hit in (0, t_max), counted only if the ray meets the object's box in
     // that interval (`box_tested`: the structure has checked that already; `slab`: the ray's).
-    // shape_of(t_max): the shape's hit in object space (shape_of() or leaf_shape_hit).
-    // `object`: an Object, or its copy in a BVH leaf (LeafObject).
+    // shape_of(t_max, wanted): the shape's hit in object space (shape_of() or leaf_shape_hit).
+    // `object`: an Object, or its copy in a BVH leaf (LeafObject). Wanted::any: a hit, not
+    // always the first (the box check does not depend on which).
     template <class Placed, class ShapeOf>
     ShapeHit intersect_object(const Placed& object, const LazySlab& slab, Real t_max,
-                              bool box_tested, const ShapeOf& shape_of) const;
+                              bool box_tested, const ShapeOf& shape_of,
+                              Wanted wanted = Wanted::nearest) const;
     // The same without the box check: the shape's own intersection routine, on the ray in
     // object space (taken there by the object's transform, or its leaf copy's ToObject).
     template <class Counters>
     static ShapeHit intersect_shape(ShapeKind shape, const ShapeParams& params, const Ray& ray,
-                                    Real t_max, Counters& counters);
+                                    Real t_max, Counters& counters, Wanted wanted);
     // intersect_shape for `object` on `ray` (taken to object space by its transform), as a
     // shape_of.
     template <class Counters>
@@ -188,11 +190,12 @@ class World {
     };
     template <class Counters>
     ShapeHit leaf_shape_hit(std::uint32_t slot, const Ray& ray, Real t_max, LeafLanes& lanes,
-                            Counters& counters) const;
+                            Counters& counters, Wanted wanted) const;
     struct LeafObject;
     template <class Counters>
     ShapeHit other_leaf_shape_hit(const LeafObject& leaf, std::uint32_t slot, const Ray& ray,
-                                  Real t_max, LeafLanes& lanes, Counters& counters) const;
+                                  Real t_max, LeafLanes& lanes, Counters& counters,
+                                  Wanted wanted) const;
     // The eight-wide BVH's leaf [begin, end) for one ray: visit(index, object, t_max, shape_of)
     // for each of its objects in slot order, until one returns true (then true).
     template <class Counters, class Visit>

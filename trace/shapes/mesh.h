@@ -241,8 +241,11 @@ consider_triangles(const Mesh& mesh, std::uint32_t begin, std::uint32_t end,
 // limit loosely (loose(), trace/math.h), triangles strictly. On equal t the lower triangle index
 // wins, as it does when all are tested in order: the answer does not depend on the order a
 // tree visits its leaves in (tests/accel_test.cpp, MeshHitsAreTheSameWhateverTheVisitingOrder).
+// Wanted::any stops after the first leaf that holds a hit: a hit, not always the nearest, found
+// exactly when the nearest is (the traversal it stops is the same, its limit only shortened).
 template <class Counters>
-ShapeHit intersect_mesh(const Mesh& mesh, const Ray& ray, Real t_max, Counters& counters) {
+ShapeHit intersect_mesh(const Mesh& mesh, const Ray& ray, Real t_max, Counters& counters,
+                        Wanted wanted = Wanted::nearest) {
     ShapeHit best;
     const WatertightRay prepared(ray); // once per ray, not per triangle
     Real box_limit = loose(t_max);
@@ -252,7 +255,7 @@ ShapeHit intersect_mesh(const Mesh& mesh, const Ray& ray, Real t_max, Counters& 
             [&](std::uint32_t begin, std::uint32_t end, Real& limit) {
                 consider_triangles(mesh, begin, end, prepared, t_max, best, counters);
                 limit = loose(std::min(best.t, t_max));
-                return false;
+                return wanted == Wanted::any && best.found();
             },
             [&](std::uint32_t first) { prefetch_block(mesh, first); });
     } else {

@@ -72,6 +72,11 @@ struct ShapeHit {
     bool found() const { return t != kInfinity; }
 };
 
+// What a query wants of a shape: its nearest hit in (0, t_max), or any hit there (a shadow
+// ray's question), which a mesh may answer at the first triangle it finds. Both find a hit
+// exactly when there is one.
+enum class Wanted : std::uint8_t { nearest, any };
+
 // A point on a unit primitive in object space.
 struct SurfaceSample {
     Vec3 point;  // on the surface up to `error`
