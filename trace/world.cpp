@@ -151,7 +151,7 @@ ShapeHit World::intersect_object(const Placed& object, const LazySlab& slab, Rea
 template <class Counters>
 ShapeHit World::intersect_shape(ShapeKind shape, const ShapeParams& params, const Ray& ray,
                                 Real t_max, Counters& counters, Wanted wanted) {
-    if (shape == ShapeKind::mesh) // the one shape with more than one hit to choose from cheaply
+    if (shape == ShapeKind::mesh) // may stop early; every other shape has its one answer
         return intersect_mesh(*params.mesh, ray, t_max, counters, wanted);
     return visit_shape(shape,
                        [&]<class S>(S) { return S::intersect(params, ray, t_max, counters); });

@@ -171,7 +171,8 @@ class World {
                               bool box_tested, const ShapeOf& shape_of,
                               Wanted wanted = Wanted::nearest) const;
     // The same without the box check: the shape's own intersection routine, on the ray in
-    // object space (taken there by the object's transform, or its leaf copy's ToObject).
+    // object space (taken there by the object's transform, or its leaf copy's ToObject); a
+    // mesh's with `wanted` (intersect_mesh), every other shape's whatever it is.
     template <class Counters>
     static ShapeHit intersect_shape(ShapeKind shape, const ShapeParams& params, const Ray& ray,
                                     Real t_max, Counters& counters, Wanted wanted);

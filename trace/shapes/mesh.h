@@ -112,10 +112,10 @@ inline TriangleHit intersect_triangle(Vec3 p0, Vec3 p1, Vec3 p2, const Ray& ray)
 // ray), bit for bit; every other lane below `lanes` is missed (intersect_triangle's
 // TriangleHit{}) and its hits[i] is left as it was. With SSE in float, the test's operations in
 // the same order lane by lane, four lanes an instruction, and the divisions only when a lane
-// is left after the edge functions' signs (most blocks a ray reaches are missed: their three
-// divisions were a fifth of gears-4's triangle tests); a lane whose edge functions meet a zero
-// (the ray through an edge or a vertex in float) is answered by the single test, which decides
-// it in double. Elsewhere (double precision), one lane at a time.
+// is left after the edge functions' signs (most blocks a ray reaches are missed, and waiting on
+// their three divisions was the largest stall in gears-4's triangle tests); a lane whose edge
+// functions meet a zero (the ray through an edge or a vertex in float) is answered by the single
+// test, which decides it in double. Elsewhere (double precision), one lane at a time.
 [[nodiscard, gnu::always_inline]] inline unsigned
 intersect_triangles(const TriangleBlock& block, std::uint32_t lanes, const WatertightRay& r,
                     TriangleHit (&hits)[kTriangleLanes]) {

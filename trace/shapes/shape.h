@@ -73,8 +73,8 @@ struct ShapeHit {
 };
 
 // What a query wants of a shape: its nearest hit in (0, t_max), or any hit there (a shadow
-// ray's question), which a mesh may answer at the first triangle it finds. Both find a hit
-// exactly when there is one.
+// ray's question), which a mesh may answer at the first leaf of its tree that holds one. Both
+// find a hit exactly when there is one.
 enum class Wanted : std::uint8_t { nearest, any };
 
 // A point on a unit primitive in object space.
