@@ -15,17 +15,13 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <functional>
 #include <map>
 #include <memory>
-#include <spawn.h>
 #include <sstream>
-#include <sys/wait.h>
-#include <unistd.h>
 
 namespace glint {
 namespace {
@@ -262,33 +258,12 @@ std::vector<std::size_t> pareto_front(const std::vector<Run>& runs) {
     return front;
 }
 
-// Runs gnuplot on `script`; throws when it fails. The script goes to gnuplot as a file named on
-// its command line, not on its standard input: Debian 12's gnuplot (5.4.4) reading a plot from a
-// pipe died of a segmentation fault now and then (6 of 80 runs of
-// Cli.CompareAndTradeoffTakeNffAndObjScenes here, and fresh-clone runs of `./glint test`), and
-// twice in a row when tried again; given its scripts as a file, it never did (0 of 120).
+// Runs gnuplot on `script`; throws when it fails.
 void gnuplot(const std::string& script) {
-    std::string path = (fs::temp_directory_path() / "glint-plot-XXXXXX").string();
-    const int fd = mkstemp(path.data());
-    if (fd < 0) throw std::runtime_error("cannot write gnuplot's script: " + path);
-    struct Remove { // the script, however this ends
-        const std::string& path;
-        ~Remove() { std::remove(path.c_str()); }
-    } remove{path};
-    const bool written =
-        ::write(fd, script.data(), script.size()) == static_cast<ssize_t>(script.size());
-    ::close(fd);
-    if (!written) throw std::runtime_error("cannot write gnuplot's script: " + path);
-    char program[] = "gnuplot";
-    char* argv[] = {program, path.data(), nullptr};
-    pid_t child;
-    if (posix_spawnp(&child, program, nullptr, nullptr, argv, environ) != 0)
-        throw std::runtime_error("cannot run gnuplot");
-    int status = 0;
-    while (waitpid(child, &status, 0) < 0 && errno == EINTR) {
-    }
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-        throw std::runtime_error("gnuplot failed on the plot script");
+    FILE* pipe = popen("gnuplot", "w");
+    if (!pipe) throw std::runtime_error("cannot run gnuplot");
+    std::fwrite(script.data(), 1, script.size(), pipe);
+    if (pclose(pipe) != 0) throw std::runtime_error("gnuplot failed on the plot script");
 }
 
 // Time against PSNR, a colour per knob, the Pareto front a line with its settings named; runs
