@@ -121,6 +121,11 @@ TEST(Cli, TradeoffWritesTheCsvAPlotPerSceneAndTheSummary) {
         // float images too (identical settings), never negative, and at least the byte error's
         // floor where bytes differ by more than 1/255 (a byte step is 1/255 in radiance, less
         // its rounding: > (k − 1)/255 for k steps).
+        // A frame's time less its GL set-up: more than nothing, never negative (it was when
+        // the set-up hid behind the World's preparation and was subtracted twice).
+        EXPECT_GT(std::stod(row[column("seconds_frame")]), 0) << line;
+        EXPECT_LE(std::stod(row[column("seconds_frame")]), std::stod(row[column("seconds_total")]))
+            << line;
         const double rmse = std::stod(row[column("rmse_radiance")]);
         const double largest = std::stod(row[column("max_error_radiance")]);
         EXPECT_GE(rmse, 0) << line;
