@@ -73,8 +73,8 @@ struct WideRay {
     int near[3]; // 0: the low plane is entered first; 1: the high one
 
     // Component by component, not through a SlabRay copied whole: that copy read eight bytes
-    // that two four-byte stores had just written, which no processor forwards from its store
-    // buffer (a stall that was a tenth of balls-4's shadow rays).
+    // that two four-byte stores had just written, a load the store buffer could not forward
+    // here (perf annotate: 11% of balls-4's single shadow rays; docs/PERFORMANCE.md).
     explicit WideRay(const Ray& ray) {
         for (int a = 0; a < 3; ++a) {
             origin[a] = ray.origin[a];
