@@ -4,11 +4,49 @@
 #include <glad/gl.h> // before GL/osmesa.h, which would otherwise pull in GL/gl.h
 
 #include <GL/osmesa.h>
+#include <dlfcn.h>
 
 #include <array>
+#include <string>
 
 namespace glint {
 namespace {
+
+// libOSMesa is opened when the first context is made, not linked: it brings llvmpipe and LLVM
+// with it, whose loading and relocation cost every glint process about 65 ms before main()
+// (`glint --version` took 78 ms, 13 without it), though only the item buffer uses it. Once
+// opened it stays open, so that the leak checker still sees its allocations' module
+// (tools/lsan.supp).
+struct OsmesaLibrary {
+    decltype(&OSMesaCreateContextAttribs) create_context_attribs;
+    decltype(&OSMesaMakeCurrent) make_current;
+    decltype(&OSMesaDestroyContext) destroy_context;
+    decltype(&OSMesaGetProcAddress) get_proc_address;
+};
+
+template <class Function> Function osmesa_function(void* library, const char* name) {
+    void* function = dlsym(library, name);
+    if (!function) throw GlError(std::string("libOSMesa lacks ") + name);
+    return reinterpret_cast<Function>(function);
+}
+
+const OsmesaLibrary& osmesa() {
+    static const OsmesaLibrary functions = [] {
+        void* library = dlopen("libOSMesa.so.8", RTLD_NOW | RTLD_LOCAL);
+        if (!library) { // the package libosmesa6, which ./glint installs
+            const std::string why = dlerror();
+            library = dlopen("libOSMesa.so", RTLD_NOW | RTLD_LOCAL);
+            if (!library) throw GlError("could not load OSMesa (libosmesa6): " + why);
+        }
+        return OsmesaLibrary{
+            osmesa_function<decltype(&OSMesaCreateContextAttribs)>(library,
+                                                                   "OSMesaCreateContextAttribs"),
+            osmesa_function<decltype(&OSMesaMakeCurrent)>(library, "OSMesaMakeCurrent"),
+            osmesa_function<decltype(&OSMesaDestroyContext)>(library, "OSMesaDestroyContext"),
+            osmesa_function<decltype(&OSMesaGetProcAddress)>(library, "OSMesaGetProcAddress")};
+    }();
+    return functions;
+}
 
 class OsmesaContext final : public GlContext {
   public:
@@ -28,23 +66,24 @@ class OsmesaContext final : public GlContext {
                                   OSMESA_CONTEXT_MINOR_VERSION,
                                   3,
                                   0};
-        context_ = OSMesaCreateContextAttribs(attributes, nullptr);
+        context_ = library_.create_context_attribs(attributes, nullptr);
         if (!context_) throw GlError("OSMesa could not create an OpenGL 3.3 core context");
         // OSMesa needs a live buffer to make a context current; glint renders into its own FBOs.
-        if (!OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, 1, 1)) {
-            OSMesaDestroyContext(context_);
+        if (!library_.make_current(context_, buffer_.data(), GL_UNSIGNED_BYTE, 1, 1)) {
+            library_.destroy_context(context_);
             throw GlError("OSMesa could not make its context current");
         }
         try {
-            load_functions(reinterpret_cast<void* (*)(const char*)>(OSMesaGetProcAddress));
+            load_functions(reinterpret_cast<void* (*)(const char*)>(library_.get_proc_address));
         } catch (...) {
-            OSMesaDestroyContext(context_);
+            library_.destroy_context(context_);
             throw;
         }
     }
-    ~OsmesaContext() override { OSMesaDestroyContext(context_); }
+    ~OsmesaContext() override { library_.destroy_context(context_); }
 
   private:
+    const OsmesaLibrary& library_ = osmesa();
     OSMesaContext context_ = nullptr;
     std::array<unsigned char, 4> buffer_{};
 };
