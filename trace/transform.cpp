@@ -64,12 +64,6 @@ Vec3 Transform::point_to_world(Vec3 p) const {
     return linear * p + offset;
 }
 
-Vec3 Transform::normal_to_world(Vec3 n) const {
-    // Translations and positive uniform scales leave unit normals unchanged.
-    if (kind != TransformClass::general) return n;
-    return glm::normalize(glm::transpose(inverse_linear) * n);
-}
-
 Real Transform::normal_stretch(Vec3 n) const {
     switch (kind) {
     case TransformClass::identity:

@@ -84,7 +84,14 @@ struct Transform {
     }
     Vec3 point_to_world(Vec3 p) const;
     // normalize(M⁻ᵀ n) for an object-space normal n.
-    Vec3 normal_to_world(Vec3 n) const;
+    // Inline: a call returned the vector split across two registers, which the caller stored
+    // and read back as one, a load the store buffer cannot forward (World::surface's largest
+    // stall in `perf annotate`).
+    Vec3 normal_to_world(Vec3 n) const {
+        // Translations and positive uniform scales leave unit normals unchanged.
+        if (kind != TransformClass::general) return n;
+        return glm::normalize(glm::transpose(inverse_linear) * n);
+    }
     // |M⁻ᵀ n| for a unit object-space normal n: how much the transform stretches distances
     // measured along the normal, from world to object space.
     Real normal_stretch(Vec3 n) const;
