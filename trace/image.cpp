@@ -153,23 +153,32 @@ std::string encode_png(const Image& image) {
         const int y0 = b * kRowsPerBand, y1 = std::min(image.height, y0 + kRowsPerBand);
         deflated[b] = deflate_band(image, y0, y1, b == bands - 1, adlers[b]);
     });
-    std::string idat = "\x78\x01"; // zlib header: deflate, 32 KiB window, fastest
-    uLong adler = adler32(0, nullptr, 0);
-    const std::size_t row_bytes = static_cast<std::size_t>(image.width) * 3 + 1; // filter byte
-    for (int b = 0; b < bands; ++b) {
-        idat += deflated[b];
-        const int rows = std::min(image.height, (b + 1) * kRowsPerBand) - b * kRowsPerBand;
-        adler = adler32_combine(adler, adlers[b], static_cast<z_off_t>(row_bytes * rows));
-    }
-    put_u32(idat, static_cast<std::uint32_t>(adler));
+    std::size_t idat_size = 2 + 4; // the zlib header, the bands, the Adler-32 checksum
+    for (const std::string& band : deflated) idat_size += band.size();
 
+    // The file in one string, its size known: the compressed data is copied once, into place.
     std::string png = "\x89PNG\r\n\x1a\n";
+    png.reserve(png.size() + 25 + (12 + idat_size) + 12); // IHDR, IDAT, IEND
     std::string header;
     put_u32(header, static_cast<std::uint32_t>(image.width));
     put_u32(header, static_cast<std::uint32_t>(image.height));
     header += std::string("\x08\x02\x00\x00\x00", 5); // 8-bit RGB, deflate, no interlace
     put_chunk(png, "IHDR", header);
-    put_chunk(png, "IDAT", idat);
+
+    put_u32(png, static_cast<std::uint32_t>(idat_size));
+    const std::size_t idat = png.size();
+    png.append("IDAT", 4);
+    png.append("\x78\x01", 2); // zlib header: deflate, 32 KiB window, fastest
+    uLong adler = adler32(0, nullptr, 0);
+    const std::size_t row_bytes = static_cast<std::size_t>(image.width) * 3 + 1; // filter byte
+    for (int b = 0; b < bands; ++b) {
+        png += deflated[b];
+        const int rows = std::min(image.height, (b + 1) * kRowsPerBand) - b * kRowsPerBand;
+        adler = adler32_combine(adler, adlers[b], static_cast<z_off_t>(row_bytes * rows));
+    }
+    put_u32(png, static_cast<std::uint32_t>(adler));
+    const auto* chunk = reinterpret_cast<const Bytef*>(png.data() + idat);
+    put_u32(png, static_cast<std::uint32_t>(crc32(0, chunk, static_cast<uInt>(png.size() - idat))));
     put_chunk(png, "IEND", "");
     return png;
 }
