@@ -36,7 +36,7 @@ void free_frame_storage(void* block, std::size_t bytes) {
 }
 
 Image to_bytes(const FloatImage& colour) {
-    Image image(colour.width, colour.height);
+    Image image = Image::uninitialised(colour.width, colour.height);
     // In parallel bands of rows: a frame's bytes are made as it is written.
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, colour.rgb.size(), 1 << 16),
                       [&](const tbb::blocked_range<std::size_t>& r) {

@@ -15,22 +15,6 @@
 
 namespace glint {
 
-struct Image {
-    int width = 0;
-    int height = 0;
-    std::vector<std::uint8_t> rgb; // row-major, top row first, 3 bytes a pixel
-
-    Image() = default;
-    Image(int w, int h) : width(w), height(h), rgb(static_cast<std::size_t>(w) * h * 3) {}
-
-    std::uint8_t* pixel(int x, int y) {
-        return &rgb[(static_cast<std::size_t>(y) * width + x) * 3];
-    }
-    const std::uint8_t* pixel(int x, int y) const {
-        return &rgb[(static_cast<std::size_t>(y) * width + x) * 3];
-    }
-};
-
 // Storage for a frame's buffers (FrameAllocator): a block of kHugeStorage bytes or more
 // is aligned to 2 MB and offered to the kernel for transparent huge pages (Linux's
 // madvise(MADV_HUGEPAGE), where it has them), so that the first touch of a 1080p frame's 25 MB
@@ -67,6 +51,30 @@ template <class T> struct UninitialisedAllocator : FrameAllocator<T> {
 
 // Linear float RGB, row-major, top row first: colour as the tracer computes it, kept in float
 // until a writer turns it into a file's format (PNG bytes below, OpenEXR in trace/exr.h).
+struct Image {
+    int width = 0;
+    int height = 0;
+    // Row-major, top row first, 3 bytes a pixel; a frame's on huge pages, like FloatImage's.
+    std::vector<std::uint8_t, UninitialisedAllocator<std::uint8_t>> rgb;
+
+    Image() = default;
+    Image(int w, int h) : width(w), height(h), rgb(static_cast<std::size_t>(w) * h * 3, 0) {}
+    // Its pixels left unset, for a caller that writes every one (to_bytes, in parallel).
+    static Image uninitialised(int w, int h) {
+        Image image;
+        image.width = w, image.height = h;
+        image.rgb.resize(static_cast<std::size_t>(w) * h * 3);
+        return image;
+    }
+
+    std::uint8_t* pixel(int x, int y) {
+        return &rgb[(static_cast<std::size_t>(y) * width + x) * 3];
+    }
+    const std::uint8_t* pixel(int x, int y) const {
+        return &rgb[(static_cast<std::size_t>(y) * width + x) * 3];
+    }
+};
+
 struct FloatImage {
     int width = 0;
     int height = 0;
