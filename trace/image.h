@@ -49,8 +49,7 @@ template <class T> struct UninitialisedAllocator : FrameAllocator<T> {
     }
 };
 
-// Linear float RGB, row-major, top row first: colour as the tracer computes it, kept in float
-// until a writer turns it into a file's format (PNG bytes below, OpenEXR in trace/exr.h).
+// 8-bit RGB, as a PNG holds it.
 struct Image {
     int width = 0;
     int height = 0;
@@ -75,6 +74,8 @@ struct Image {
     }
 };
 
+// Linear float RGB, row-major, top row first: colour as the tracer computes it, kept in float
+// until a writer turns it into a file's format (Image's bytes above, OpenEXR in trace/exr.h).
 struct FloatImage {
     int width = 0;
     int height = 0;
