@@ -49,6 +49,15 @@ template <class T> struct UninitialisedAllocator : FrameAllocator<T> {
     }
 };
 
+// A w×h image of RGB pixels (Image, FloatImage) whose values its UninitialisedAllocator leaves
+// unset.
+template <class RgbImage> RgbImage uninitialised_rgb(int w, int h) {
+    RgbImage image;
+    image.width = w, image.height = h;
+    image.rgb.resize(static_cast<std::size_t>(w) * h * 3);
+    return image;
+}
+
 // 8-bit RGB, as a PNG holds it.
 struct Image {
     int width = 0;
@@ -59,12 +68,7 @@ struct Image {
     Image() = default;
     Image(int w, int h) : width(w), height(h), rgb(static_cast<std::size_t>(w) * h * 3, 0) {}
     // Its pixels left unset, for a caller that writes every one (to_bytes, in parallel).
-    static Image uninitialised(int w, int h) {
-        Image image;
-        image.width = w, image.height = h;
-        image.rgb.resize(static_cast<std::size_t>(w) * h * 3);
-        return image;
-    }
+    static Image uninitialised(int w, int h) { return uninitialised_rgb<Image>(w, h); }
 
     std::uint8_t* pixel(int x, int y) {
         return &rgb[(static_cast<std::size_t>(y) * width + x) * 3];
@@ -84,12 +88,7 @@ struct FloatImage {
     FloatImage() = default;
     FloatImage(int w, int h) : width(w), height(h), rgb(static_cast<std::size_t>(w) * h * 3, 0.0f) {}
     // Its pixels left unset, for a frame whose passes write every one.
-    static FloatImage uninitialised(int w, int h) {
-        FloatImage image;
-        image.width = w, image.height = h;
-        image.rgb.resize(static_cast<std::size_t>(w) * h * 3);
-        return image;
-    }
+    static FloatImage uninitialised(int w, int h) { return uninitialised_rgb<FloatImage>(w, h); }
 
     bool empty() const { return rgb.empty(); }
     float* pixel(std::size_t i) { return &rgb[3 * i]; }
