@@ -34,9 +34,14 @@ CutoffBound cutoff_bound(const Scene& scene, const RenderResult& render) {
     const FloatImage& display = render.display();
     CutoffBound bound;
     bound.per_pixel.assign(render.omitted_weight.size(), 0);
-    // In parallel bands of pixels (a frame's 2 million took 10 ms on one thread, after the
-    // frame's write), each band's largest values and count joined after.
-    const auto band = [&](const tbb::blocked_range<std::size_t>& r, CutoffBound partial) {
+    // In parallel bands of pixels (it runs after the frame's write, outside every timed phase:
+    // docs/PERFORMANCE.md, "Start-up and the write"), each band's extremes joined after.
+    struct Extremes {
+        int max = 0;
+        std::uint64_t pixels_over_one = 0;
+        double largest_omitted_weight = 0;
+    };
+    const auto band = [&](const tbb::blocked_range<std::size_t>& r, Extremes partial) {
         for (std::size_t i = r.begin(); i != r.end(); ++i) {
             const double weight = render.omitted_weight[i];
             partial.largest_omitted_weight = std::max(partial.largest_omitted_weight, weight);
@@ -55,18 +60,16 @@ CutoffBound cutoff_bound(const Scene& scene, const RenderResult& render) {
         }
         return partial;
     };
-    const auto join = [](CutoffBound a, const CutoffBound& b) {
-        a.max = std::max(a.max, b.max);
-        a.pixels_over_one += b.pixels_over_one;
-        a.largest_omitted_weight = std::max(a.largest_omitted_weight, b.largest_omitted_weight);
-        return a;
+    const auto join = [](Extremes a, const Extremes& b) {
+        return Extremes{std::max(a.max, b.max), a.pixels_over_one + b.pixels_over_one,
+                        std::max(a.largest_omitted_weight, b.largest_omitted_weight)};
     };
-    const CutoffBound totals = tbb::parallel_reduce(
-        tbb::blocked_range<std::size_t>(0, render.omitted_weight.size(), 1 << 16), CutoffBound{},
-        band, join);
-    bound.max = totals.max;
-    bound.pixels_over_one = totals.pixels_over_one;
-    bound.largest_omitted_weight = totals.largest_omitted_weight;
+    const Extremes all = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, render.omitted_weight.size(), 1 << 16), Extremes{}, band,
+        join);
+    bound.max = all.max;
+    bound.pixels_over_one = all.pixels_over_one;
+    bound.largest_omitted_weight = all.largest_omitted_weight;
     return bound;
 }
 
