@@ -24,10 +24,10 @@ struct OsmesaLibrary {
     decltype(&OSMesaGetProcAddress) get_proc_address;
 };
 
-template <class Function> Function osmesa_function(void* library, const char* name) {
-    void* function = dlsym(library, name);
+// Sets `function` to the library's `name`.
+template <class Function> void find(void* library, Function& function, const char* name) {
+    function = reinterpret_cast<Function>(dlsym(library, name));
     if (!function) throw GlError(std::string("libOSMesa lacks ") + name);
-    return reinterpret_cast<Function>(function);
 }
 
 const OsmesaLibrary& osmesa() {
@@ -38,12 +38,12 @@ const OsmesaLibrary& osmesa() {
             library = dlopen("libOSMesa.so", RTLD_NOW | RTLD_LOCAL);
             if (!library) throw GlError("could not load OSMesa (libosmesa6): " + why);
         }
-        return OsmesaLibrary{
-            osmesa_function<decltype(&OSMesaCreateContextAttribs)>(library,
-                                                                   "OSMesaCreateContextAttribs"),
-            osmesa_function<decltype(&OSMesaMakeCurrent)>(library, "OSMesaMakeCurrent"),
-            osmesa_function<decltype(&OSMesaDestroyContext)>(library, "OSMesaDestroyContext"),
-            osmesa_function<decltype(&OSMesaGetProcAddress)>(library, "OSMesaGetProcAddress")};
+        OsmesaLibrary f{};
+        find(library, f.create_context_attribs, "OSMesaCreateContextAttribs");
+        find(library, f.make_current, "OSMesaMakeCurrent");
+        find(library, f.destroy_context, "OSMesaDestroyContext");
+        find(library, f.get_proc_address, "OSMesaGetProcAddress");
+        return f;
     }();
     return functions;
 }
