@@ -255,18 +255,20 @@ Hit World::closest(const Ray& ray, Real t_max, std::uint32_t skip, Counters& cou
 }
 
 template <class Counters>
-void World::closest_packet(std::span<const Ray> rays, Hit* hits, Counters& counters) const {
+void World::closest_packet(std::span<const Ray> rays, const std::uint32_t* skips, Hit* hits,
+                           Counters& counters) const {
     assert(rays.size() <= kMaxPacket);
+    const auto skip = [&](std::size_t r) { return skips ? skips[r] : kNoObject; };
     const WideBvh* bvh = accel_.wide_bvh();
     if (!bvh) {
         for (std::size_t r = 0; r < rays.size(); ++r)
-            hits[r] = closest(rays[r], kInfinity, kNoObject, counters);
+            hits[r] = closest(rays[r], kInfinity, skip(r), counters);
         return;
     }
     Closest query[kMaxPacket];
     Real limit[kMaxPacket] = {};
     for (std::size_t r = 0; r < rays.size(); ++r) {
-        query[r] = {&rays[r], LazySlab(rays[r]), kNoObject, {}};
+        query[r] = {&rays[r], LazySlab(rays[r]), skip(r), {}};
         limit[r] = begin_closest(query[r], counters);
     }
     bvh->traverse_packet(
@@ -384,10 +386,11 @@ bool World::opaque_between(const Ray& ray, Real t_max, std::uint32_t skip,
     return any(ray, t_max, skip, none, blocks);
 }
 
-void World::intersect_packet(std::span<const Ray> rays, Hit* hits) const {
-    if (counting_) return closest_packet(rays, hits, counters_.local());
+void World::intersect_packet(std::span<const Ray> rays, Hit* hits,
+                             const std::uint32_t* skips) const {
+    if (counting_) return closest_packet(rays, skips, hits, counters_.local());
     NoCounters none;
-    closest_packet(rays, hits, none);
+    closest_packet(rays, skips, hits, none);
 }
 
 void World::occluded_packet(std::span<const Ray> rays, Real t_max, const std::uint32_t* skips,

@@ -122,10 +122,12 @@ class World {
     // answer is false, whether any is).
     bool opaque_between(const Ray& ray, Real t_max, std::uint32_t skip, bool& transmissive) const;
     // Packets of up to kMaxPacket coherent rays (a tile's camera rays, its shadow rays towards
-    // one light): exactly intersect(rays[i]) and occluded(rays[i], t_max, skips[i]) for each,
-    // with the BVH's nodes fetched once per packet (WideBvh::traverse_packet). With any other
+    // one light, its primary hits' reflected rays): exactly intersect(rays[i], kInfinity,
+    // skips[i]) (skips null: kNoObject) and occluded(rays[i], t_max, skips[i]) for each, with
+    // the BVH's nodes fetched once per packet (WideBvh::traverse_packet). With any other
     // structure, ray by ray.
-    void intersect_packet(std::span<const Ray> rays, Hit* hits) const;
+    void intersect_packet(std::span<const Ray> rays, Hit* hits,
+                          const std::uint32_t* skips = nullptr) const;
     void occluded_packet(std::span<const Ray> rays, Real t_max, const std::uint32_t* skips,
                          bool* occluded) const;
     // The same for opaque_between(rays[i], t_max, skips[i], transmissive[i]) (a tile's shadow
@@ -223,7 +225,8 @@ class World {
     template <class Counters>
     Hit closest(const Ray& ray, Real t_max, std::uint32_t skip, Counters& counters) const;
     template <class Counters>
-    void closest_packet(std::span<const Ray> rays, Hit* hits, Counters& counters) const;
+    void closest_packet(std::span<const Ray> rays, const std::uint32_t* skips, Hit* hits,
+                        Counters& counters) const;
     // Whether object `object` (other than `skip`) is hit in (0, t_max) and `blocks` it.
     template <class Placed, class ShapeOf, class Blocks>
     bool blocks_ray(const LazySlab& slab, Real t_max, std::uint32_t skip, std::uint32_t index,
