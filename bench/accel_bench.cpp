@@ -6,6 +6,7 @@
 //   glint bench                                   (everything; a few minutes)
 //   glint bench --benchmark_filter='^(Glint|Embree)'   (Google Benchmark's flags pass through)
 #include "trace/kernel.h"
+#include "trace/pixel.h"
 #include "trace/render.h"
 #include "trace/scene_loader.h"
 #include "trace/shading.h"
@@ -386,6 +387,90 @@ BENCHMARK(GlintCameraSingle)->Apply(peer_arguments);
 BENCHMARK(GlintPackets)->Apply(peer_arguments);
 BENCHMARK(GlintShadow)->Apply(peer_arguments);
 BENCHMARK(GlintShadowPackets)->Apply(peer_arguments);
+
+// ---------------------------------------------------------------------------------------------
+// Secondary rays in packets (docs/PERFORMANCE.md, "Round two's last changes, and secondary rays
+// in packets"): a frame shaded from its primary hits as render() shades it, tile by tile (one
+// thread), with the
+// first `levels` levels of each tile's ray trees cast ahead in packets (TileLighting, as
+// `--packet-levels` asks; 0: only the primary hits' shadow rays). Scenes, at 960×540, each in
+// the eight-wide BVH, whose traversal alone takes packets: SPD's balls-4, whose reflections all
+// leave spheres; the same with its floor a mirror (reflectivity 0.5); SPD's gears-4 (glass
+// gears on a mirror floor); the shipped mirrors.json (two facing flat mirrors, max_depth 12;
+// `auto` would take the list for its few objects).
+
+struct ShadingScene {
+    std::string name;
+    std::unique_ptr<World> world;
+    std::vector<std::vector<Ray>> rays; // per tile, in TileLighting's order
+    std::vector<std::vector<Hit>> hits;
+};
+
+const ShadingScene* shading_scene(std::int64_t which) {
+    static std::map<std::int64_t, std::unique_ptr<ShadingScene>> scenes;
+    auto& out = scenes[which];
+    if (out) return out.get();
+    const char* const files[] = {"../shared/scenes/spd/balls-4.nff",
+                                 "../shared/scenes/spd/balls-4.nff",
+                                 "../shared/scenes/spd/gears-4.nff", "scenes/mirrors.json"};
+    const char* const names[] = {"balls-4", "balls-4, mirror floor", "gears-4", "mirrors"};
+    const std::filesystem::path path = std::string(GLINT_SOURCE_DIR "/") + files[which];
+    if (!std::filesystem::exists(path)) return nullptr;
+    static std::vector<std::unique_ptr<Scene>> kept; // a World refers to its scene
+    Scene& scene = *kept.emplace_back(std::make_unique<Scene>(load_scene(path)));
+    scene.camera.width = 960, scene.camera.height = 540;
+    if (which == 1)
+        for (const SceneObject& o : scene.objects)
+            if (o.shape != ShapeKind::sphere) scene.materials[o.material].reflectivity = 0.5f;
+    out = std::make_unique<ShadingScene>();
+    out->name = names[which];
+    out->world = std::make_unique<World>(scene, AccelKind::bvh);
+    const PinholeCamera& camera = out->world->camera();
+    for (int y0 = 0; y0 < camera.height(); y0 += kTileSize)
+        for (int x0 = 0; x0 < camera.width(); x0 += kTileSize) {
+            auto& rays = out->rays.emplace_back();
+            auto& hits = out->hits.emplace_back();
+            for_each_in_blocks(x0, y0, std::min(x0 + kTileSize, camera.width()),
+                               std::min(y0 + kTileSize, camera.height()), [&](int x, int y) {
+                                   rays.push_back(camera.ray(x, y));
+                                   hits.push_back(out->world->intersect(rays.back()));
+                               });
+        }
+    return out.get();
+}
+
+void TileShading(benchmark::State& state) {
+    const ShadingScene* scene = shading_scene(state.range(0));
+    if (!scene) return state.SkipWithError("no ../shared/scenes/spd beside the checkout");
+    const int levels = static_cast<int>(state.range(1));
+    TileLighting lighting;
+    std::int64_t pixels = 0;
+    RayCounts rays;
+    for (auto _ : state) {
+        for (std::size_t t = 0; t < scene->rays.size(); ++t) {
+            lighting.prepare(*scene->world, scene->rays[t], scene->hits[t], levels);
+            for (std::size_t k = 0; k < scene->rays[t].size(); ++k) {
+                const PixelSample sample = shade_pixel(*scene->world, scene->rays[t][k],
+                                                       scene->hits[t][k], lighting.at(k));
+                benchmark::DoNotOptimize(sample.colour);
+                rays += sample.rays;
+            }
+            pixels += static_cast<std::int64_t>(scene->rays[t].size());
+        }
+    }
+    state.SetItemsProcessed(pixels);
+    const auto per_pixel = [&](std::uint64_t n) {
+        return static_cast<double>(n) / static_cast<double>(pixels);
+    };
+    state.counters["reflected"] = per_pixel(rays.reflection);
+    state.counters["transmitted"] = per_pixel(rays.transmission);
+    state.counters["shadow"] = per_pixel(rays.shadow);
+    state.SetLabel(scene->name + ", " + std::to_string(levels) + " levels cast ahead");
+}
+BENCHMARK(TileShading)
+    ->ArgsProduct({{0, 1, 2, 3}, {0, 1, 2, 4}})
+    ->ArgNames({"scene", "levels"})
+    ->Unit(benchmark::kMillisecond);
 
 void MeshBuild(benchmark::State& state) {
     const std::vector<Bounds> triangles = triangle_bounds(terrain().world->mesh(0));

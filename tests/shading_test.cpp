@@ -160,50 +160,128 @@ TEST(Reflection, AReflectionRayThatEscapesAddsTheBackground) {
     EXPECT_EQ(r.bytes().rgb[2], std::lround(255 * 0.5 * 0.6));
 }
 
-// A group of pixels' shadow verdicts cast ahead in packets (TileLighting), through glass too,
-// shade every pixel exactly as its shadow rays cast one at a time: the same colour to the bit,
-// the same rays, cut-off weight, depth and path key, on every shipped scene (two with glass)
-// and a glass sphere in a mirror box whose trees reach kMaxTreeRays. The whole image is one
-// group, so that most packets are full.
-TEST(TileLighting, ShadesEveryPixelExactlyAsShadowRaysCastOneAtATime) {
+// A group of pixels' shadow verdicts and the first levels of their ray trees cast ahead in
+// packets (TileLighting), through glass too, shade every pixel exactly as its rays cast one at
+// a time: the same colour to the bit, the same rays, cut-off weight, depth and path key, with
+// 0, 1, 2 and 5 levels cast ahead, on every shipped scene (two with glass), a glass sphere in
+// a mirror box whose trees reach kMaxTreeRays, and the same box where the cut-offs stop every
+// secondary ray at the primary hit (max_depth 0) or every transmitted one (min_weight above
+// the glass's transmission). Each hit cast ahead is the one World::intersect finds for the ray
+// shade() casts there, with the same surface; none is cast where shade() casts no ray, or below
+// the levels asked for. The whole image is one group, so that most packets are full.
+TEST(TileLighting, ShadesEveryPixelExactlyAsItsRaysCastOneAtATime) {
     std::vector<std::pair<std::string, Scene>> scenes;
     for (const char* name : testing::kShippedScenes)
         scenes.emplace_back(name, testing::shipped(name, 40, 30));
-    scenes.emplace_back("budget", parse_scene(R"({
+    const auto mirror_box = [](const char* render) {
+        return parse_scene(R"({
         "camera": {"eye": [0, 0, 3], "look_at": [0, 0, 0], "width": 6, "height": 4},
         "lights": [{"position": [0, 2, 1]}, {"position": [0, 0, 0.5]}],
-        "materials": {"g": {"reflectivity": 0.5, "transmission": 0.5, "ior": 1.5},
+        "materials": {"g": {"reflectivity": 0.5, "transmission": 0.4, "ior": 1.5},
                       "m": {"reflectivity": 1}},
-        "render": {"max_depth": 64, "min_weight": 0},
+        "render": )" + std::string(render) +
+                               R"(,
         "objects": [{"shape": "sphere", "material": "g"},
                     {"shape": "box", "material": "m", "transform": [{"scale": 5}]}]})",
-                                              "budget.json"));
-    for (const auto& [name, scene] : scenes) {
-        const World world(scene, AccelKind::bvh); // packets: the eight-wide BVH's traversal
-        std::vector<Ray> rays;
-        std::vector<Hit> hits;
-        for (int y = 0; y < world.camera().height(); ++y)
-            for (int x = 0; x < world.camera().width(); ++x) {
-                rays.push_back(world.camera().ray(x, y));
-                hits.push_back(world.intersect(rays.back()));
+                           "box.json");
+    };
+    scenes.emplace_back("budget", mirror_box(R"({"max_depth": 64, "min_weight": 0})"));
+    scenes.emplace_back("max_depth 0", mirror_box(R"({"max_depth": 0})"));
+    scenes.emplace_back("min_weight", mirror_box(R"({"max_depth": 3, "min_weight": 0.45})"));
+    for (const int levels : {0, 1, 2, 5}) {
+        for (const auto& [name, scene] : scenes) {
+            const World world(scene, AccelKind::bvh); // packets: the eight-wide BVH's traversal
+            std::vector<Ray> rays;
+            std::vector<Hit> hits;
+            for (int y = 0; y < world.camera().height(); ++y)
+                for (int x = 0; x < world.camera().width(); ++x) {
+                    rays.push_back(world.camera().ray(x, y));
+                    hits.push_back(world.intersect(rays.back()));
+                }
+            const TileLighting lighting(world, rays, hits, levels);
+            const std::string where = name + ", levels " + std::to_string(levels);
+            std::size_t through_glass = 0;  // verdicts that leave shade() glass to follow
+            std::size_t ahead_rays[2] = {}; // reflected and transmitted rays cast ahead
+            int deepest = 0;
+            for (std::size_t k = 0; k < rays.size(); ++k) {
+                const PreparedHit prepared = lighting.at(k);
+                const std::size_t lights = world.lights().size();
+                if (lights > 0) {
+                    ASSERT_EQ(prepared.ahead.node, k);
+                    ASSERT_EQ(prepared.ahead.lit, rays.size()); // the primary hits'
+                    const Real* light = prepared.ahead.light + k * lights;
+                    through_glass += std::count(light, light + lights, kThroughGlass);
+                }
+                const PixelSample alone = shade_pixel(world, rays[k], hits[k]);
+                const PixelSample ahead = shade_pixel(world, rays[k], hits[k], prepared);
+                ASSERT_EQ(ahead.colour, alone.colour) << where << " pixel " << k;
+                ASSERT_EQ(ahead.omitted_weight, alone.omitted_weight) << where << " pixel " << k;
+                ASSERT_EQ(ahead.path_key, alone.path_key) << where << " pixel " << k;
+                ASSERT_EQ(ahead.depth, alone.depth) << where << " pixel " << k;
+                ASSERT_EQ(ahead.rays.shadow, alone.rays.shadow) << where << " pixel " << k;
+                ASSERT_EQ(ahead.rays.reflection, alone.rays.reflection) << where;
+                ASSERT_EQ(ahead.rays.transmission, alone.rays.transmission) << where;
+                // The tree cast ahead, walked from the pixel's node: each child's hit and
+                // surface are the ones of the ray shade() would cast from its parent, which
+                // the tree cast alone then holds (or omits: its weight counts it).
+                const auto walk = [&](const auto& self, std::uint32_t n, const Ray& ray,
+                                      int depth) -> void {
+                    const AheadNode& node = prepared.ahead.nodes[n];
+                    const SurfacePoint& at = prepared.ahead.surfaces[n];
+                    deepest = std::max(deepest, depth);
+                    const Phong& m = world.material(node.hit.object);
+                    const SecondaryRay next[2] = {reflected_ray(ray, at),
+                                                  transmitted_ray(ray, at, m.ior)};
+                    const Real factor[2] = {m.reflectivity, m.transmission};
+                    const std::uint64_t cast[2] = {alone.rays.reflection, alone.rays.transmission};
+                    for (int kind = 0; kind < 2; ++kind) {
+                        if (node.next[kind] == AheadNode::kNone) {
+                            if (factor[kind] > 0 && depth < levels) {
+                                ASSERT_GT(alone.omitted_weight, 0) << where << " pixel " << k;
+                            }
+                            continue;
+                        }
+                        ASSERT_LT(depth, levels) << where << " pixel " << k;
+                        ASSERT_GT(cast[kind], 0u) << where << " pixel " << k;
+                        ++ahead_rays[kind];
+                        const AheadNode& child = prepared.ahead.nodes[node.next[kind]];
+                        const SurfacePoint& child_surface =
+                            prepared.ahead.surfaces[node.next[kind]];
+                        const Hit hit = world.intersect(next[kind].ray, kInfinity, next[kind].skip);
+                        ASSERT_EQ(child.hit.object, hit.object) << where << " pixel " << k;
+                        ASSERT_EQ(child.hit.t, hit.t) << where << " pixel " << k;
+                        ASSERT_EQ(child.hit.primitive, hit.primitive) << where << " pixel " << k;
+                        if (!hit.found()) continue;
+                        const SurfacePoint surface = world.surface(next[kind].ray, hit);
+                        ASSERT_EQ(child_surface.position, surface.position) << where;
+                        ASSERT_EQ(child_surface.shading, surface.shading) << where;
+                        ASSERT_EQ(child_surface.skip, surface.skip) << where;
+                        self(self, node.next[kind], next[kind].ray, depth + 1);
+                    }
+                };
+                if (levels == 0) { // the default path keeps no nodes
+                    ASSERT_EQ(prepared.ahead.nodes, nullptr) << where;
+                } else if (hits[k].found()) {
+                    walk(walk, static_cast<std::uint32_t>(k), rays[k], 0);
+                }
             }
-        const TileLighting lighting(world, rays, hits);
-        std::size_t through_glass = 0; // verdicts that leave shade() glass to follow
-        for (std::size_t k = 0; k < rays.size(); ++k) {
-            const Real* light = lighting.at(k).light;
-            through_glass += std::count(light, light + world.lights().size(), kThroughGlass);
-            const PixelSample alone = shade_pixel(world, rays[k], hits[k]);
-            const PixelSample ahead = shade_pixel(world, rays[k], hits[k], lighting.at(k));
-            ASSERT_EQ(ahead.colour, alone.colour) << name << " pixel " << k;
-            ASSERT_EQ(ahead.omitted_weight, alone.omitted_weight) << name << " pixel " << k;
-            ASSERT_EQ(ahead.path_key, alone.path_key) << name << " pixel " << k;
-            ASSERT_EQ(ahead.depth, alone.depth) << name << " pixel " << k;
-            ASSERT_EQ(ahead.rays.shadow, alone.rays.shadow) << name << " pixel " << k;
-            ASSERT_EQ(ahead.rays.reflection, alone.rays.reflection) << name << " pixel " << k;
-            ASSERT_EQ(ahead.rays.transmission, alone.rays.transmission) << name;
-        }
-        if (name == "glass" || name == "budget") {
-            EXPECT_GT(through_glass, 0u) << name;
+            if (name == "glass" || name == "budget") {
+                EXPECT_GT(through_glass, 0u) << where;
+            }
+            if (levels == 0 || name == "max_depth 0") {
+                EXPECT_EQ(ahead_rays[0] + ahead_rays[1], 0u) << where;
+                continue;
+            }
+            if (name == "budget" || name == "min_weight" || name == "mirrors") {
+                EXPECT_GT(ahead_rays[0], rays.size() / 2) << where;
+            }
+            if (name == "budget") {
+                EXPECT_GT(ahead_rays[1], 0u) << where;
+                EXPECT_EQ(deepest, levels) << where;
+            }
+            if (name == "min_weight") {
+                EXPECT_EQ(ahead_rays[1], 0u) << where;
+            }
         }
     }
 }

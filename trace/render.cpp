@@ -44,7 +44,7 @@ RayCounts shade_tile(const World& world, const Hit* primary, std::size_t stride,
                                static_cast<std::size_t>(x - r.x0)]);
     });
     TileLighting& lighting = buffers.lighting;
-    lighting.prepare(world, rays, hits);
+    lighting.prepare(world, rays, hits, world.settings().packet_levels);
     RayCounts counts;
     for (std::size_t k = 0; k < pixels.size(); ++k) {
         const std::size_t i = pixels[k];

@@ -136,6 +136,10 @@ struct RenderSettings {
     int samples = 1; // N: an N×N grid of samples in every pixel
     Antialias antialias = Antialias::uniform;
     float aa_threshold = kDefaultAaThreshold;
+    // How the frame is traced, not what it shows: the levels of each tile's ray trees whose
+    // reflected and transmitted rays are cast ahead in packets (TileLighting, trace/pixel.h).
+    // Any number gives the same image. Not a scene-file key: `--packet-levels`.
+    int packet_levels = 0;
 };
 
 struct Scene {

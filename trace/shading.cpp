@@ -88,7 +88,7 @@ Real light_through(const World& world, const SurfacePoint& surface, Vec3 light, 
 // body: the local terms and the two kinds of secondary ray share the weight rule and its
 // counters.
 Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoint& surface,
-           int depth, Real weight, RayTree& tree, const Real* known_light) {
+           int depth, Real weight, RayTree& tree, const CastAhead& ahead) {
     RayCounts& counts = tree.rays;
     const Phong& m = world.material(hit.object);
     const Vec3 n = surface.shading;
@@ -105,6 +105,10 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoin
     }
     tree.note((static_cast<std::uint64_t>(hit.object) + 1) * 2 + (odd ? 1 : 0));
     RayRecorder* const recorder = tree.recorder;
+    const Real* const known_light =
+        ahead.light && ahead.node < ahead.lit
+            ? ahead.light + static_cast<std::size_t>(ahead.node) * world.lights().size()
+            : nullptr;
 
     Vec3 colour = ambient * world.ambient();
     if (recorder) recorder->surface(surface, odd, texel, colour);
@@ -139,15 +143,13 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoin
                              (through * light.color) * (m.specular * highlight)});
     }
 
-    // Reflected and transmitted rays, each cast only while it can still matter: below
-    // max_depth, while the path weight (this surface's factor included) stays at or above
-    // min_reflectivity, and within the pixel's tree budget; otherwise its weight is what the
-    // cut-off may have cost.
+    // Reflected and transmitted rays, each cast only while it can still matter
+    // (casts_secondary); otherwise its weight is what the cut-off may have cost.
     const RenderSettings& settings = world.settings();
-    const auto follow = [&](RayKind kind, Real factor, const Ray& next, std::uint32_t skip) {
+    // `make_next` makes the ray; a ray cast ahead comes with its node.
+    const auto follow = [&](RayKind kind, Real factor, const auto& make_next) {
         const Real next_weight = weight * factor;
-        if (depth >= settings.max_depth || next_weight < settings.min_reflectivity ||
-            counts.reflection + counts.transmission >= kMaxTreeRays) {
+        if (!casts_secondary(settings, depth, next_weight, counts)) {
             tree.omitted_weight += next_weight;
             if (recorder)
                 recorder->omitted(kind, next_weight,
@@ -159,26 +161,32 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoin
         }
         ++(kind == RayKind::reflection ? counts.reflection : counts.transmission);
         tree.depth = std::max(tree.depth, depth + 1);
-        const Hit next_hit = world.intersect(next, kInfinity, skip);
-        if (recorder) recorder->begin(kind, next, next_hit, factor, next_weight, depth + 1);
-        const Vec3 seen = shade(world, next, next_hit, depth + 1, next_weight, tree);
+        const std::uint32_t known =
+            ahead.nodes ? ahead.nodes[ahead.node].next[kind == RayKind::transmission]
+                        : AheadNode::kNone;
+        Vec3 seen;
+        if (known == AheadNode::kNone) {
+            const SecondaryRay next = make_next();
+            const Hit next_hit = world.intersect(next.ray, kInfinity, next.skip);
+            if (recorder) recorder->begin(kind, next.ray, next_hit, factor, next_weight, depth + 1);
+            seen = shade(world, next.ray, next_hit, depth + 1, next_weight, tree);
+        } else {
+            const AheadNode& node = ahead.nodes[known];
+            if (recorder) recorder->begin(kind, node.ray, node.hit, factor, next_weight, depth + 1);
+            seen = node.hit.found()
+                       ? shade(world, node.ray, node.hit, ahead.surfaces[known], depth + 1,
+                               next_weight, tree,
+                               {ahead.surfaces, ahead.nodes, ahead.light, known, ahead.lit})
+                       : shade(world, node.ray, node.hit, depth + 1, next_weight, tree);
+        }
         if (recorder) recorder->end(seen);
         colour += factor * seen;
     };
     if (m.reflectivity > 0)
-        follow(RayKind::reflection, m.reflectivity, {surface.spawn(), reflect(ray.direction, n)},
-               surface.skip);
-    if (m.transmission > 0) {
-        // Entering (the side of the shape's outward normal): from air into the material.
-        const Real eta = surface.entering ? 1 / m.ior : m.ior;
-        bool total = false;
-        const Vec3 d = refract(glm::normalize(ray.direction), n, eta, total);
-        if (total) // leaves on the facing side, as a reflection does
-            follow(RayKind::transmission, m.transmission, {surface.spawn(), d}, surface.skip);
-        else
-            follow(RayKind::transmission, m.transmission, {surface.spawn_through(), d},
-                   surface.skip_through);
-    }
+        follow(RayKind::reflection, m.reflectivity, [&] { return reflected_ray(ray, surface); });
+    if (m.transmission > 0)
+        follow(RayKind::transmission, m.transmission,
+               [&] { return transmitted_ray(ray, surface, m.ior); });
     return colour;
 }
 

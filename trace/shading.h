@@ -65,6 +65,59 @@ inline Ray shadow_ray(const SurfacePoint& surface, Vec3 position) {
 // on the shadow ray: shade() follows it crossing by crossing.
 inline constexpr Real kThroughGlass = -1;
 
+// A reflected or transmitted ray and the object it may skip (the surface it leaves).
+struct SecondaryRay {
+    Ray ray;
+    std::uint32_t skip;
+};
+// The perfect reflection of `ray` at `surface`: d' = d − 2n(n·d), n the shading normal.
+inline SecondaryRay reflected_ray(const Ray& ray, const SurfacePoint& surface) {
+    return {{surface.spawn(), reflect(ray.direction, surface.shading)}, surface.skip};
+}
+// The ray `ray` transmits at `surface` into or out of a material of index `ior`: refracted,
+// or on total internal reflection leaving on the facing side, as a reflection does.
+inline SecondaryRay transmitted_ray(const Ray& ray, const SurfacePoint& surface, Real ior) {
+    // Entering (the side of the shape's outward normal): from air into the material.
+    const Real eta = surface.entering ? 1 / ior : ior;
+    bool total = false;
+    const Vec3 d = refract(glm::normalize(ray.direction), surface.shading, eta, total);
+    if (total) return {{surface.spawn(), d}, surface.skip};
+    return {{surface.spawn_through(), d}, surface.skip_through};
+}
+
+// Whether a reflected or transmitted ray from a hit at `depth` whose path weight would become
+// `next_weight` is cast, with `counts` the rays its tree has cast so far: below max_depth,
+// while the weight stays at or above min_reflectivity, and within the tree budget.
+inline bool casts_secondary(const RenderSettings& settings, int depth, Real next_weight,
+                            const RayCounts& counts) {
+    return depth < settings.max_depth && next_weight >= settings.min_reflectivity &&
+           counts.reflection + counts.transmission < kMaxTreeRays;
+}
+
+// What a caller cast ahead for the hits of pixels' ray trees, level by level in packets with
+// the neighbours' rays (TileLighting, trace/pixel.h): one node per hit found before shade()
+// reaches it, numbered from the pixels' primary hits on.
+struct AheadNode {
+    static constexpr std::uint32_t kNone = ~0u;
+    Ray ray; // the ray that found the hit: the camera's, or the one shade() casts there
+    Hit hit;
+    Real weight; // the path weight there
+    // The nodes of the hits of the reflected_ray and transmitted_ray from here (which shade()
+    // casts exactly where casts_secondary says so), or kNone where shade() casts them itself.
+    std::uint32_t next[2] = {kNone, kNone};
+};
+struct CastAhead {
+    const SurfacePoint* surfaces = nullptr; // node n's, where its hit is found
+    const AheadNode* nodes = nullptr;       // null: no reflected or transmitted ray cast ahead
+    // Node n's shadow verdicts at light[n · lights + j], where not null and n < lit: per light, the
+    // factor light_through would find, or kThroughGlass where the first shadow ray meets glass and
+    // nothing opaque (shade() then follows the glass crossings itself); for every light in
+    // front of the surface.
+    const Real* light = nullptr;
+    std::uint32_t node = AheadNode::kNone; // the hit being shaded
+    std::uint32_t lit = 0;
+};
+
 // Colour seen along `ray` (unclamped), which has already produced `hit` (maybe none).
 // `depth` is the number of reflections and transmissions before this hit (0 for the primary
 // hit) and `weight` the product of the reflectivities and transmissions along the path so far.
@@ -72,13 +125,10 @@ inline constexpr Real kThroughGlass = -1;
 // it would have carried (its contribution is at most that weight times the radiance it sees).
 Vec3 shade(const World& world, const Ray& ray, const Hit& hit, int depth, Real weight,
            RayTree& tree);
-// The same at a found hit whose surface point (World::surface) the caller has already rebuilt.
-// `known_light`, when given, holds per light the factor light_through would find, or
-// kThroughGlass where its first shadow ray meets glass and nothing opaque (cast by the caller in
-// packets, for the lights in front of the surface); shade then counts those shadow rays without
-// casting them, and follows the glass crossings itself.
+// The same at a found hit whose surface point (World::surface) the caller has already rebuilt,
+// and with what it has cast ahead: shade counts those rays as its own without casting them.
 Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoint& surface,
-           int depth, Real weight, RayTree& tree, const Real* known_light = nullptr);
+           int depth, Real weight, RayTree& tree, const CastAhead& ahead = {});
 
 } // namespace GLINT_PRECISION
 } // namespace glint
