@@ -34,6 +34,7 @@ struct SceneOptions {
     CLI::Option* aa_threshold_option = nullptr;
     int camera = 0;
     CLI::Option* camera_option = nullptr;
+    int packet_levels = 0;
 
     void add_to(CLI::App& cmd);
     std::filesystem::path scene_path() const; // the given scene, or scenes/default.json

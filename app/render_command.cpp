@@ -107,6 +107,7 @@ nlohmann::ordered_json stats_json(const RenderReport& r) {
         {"samples", scene.render.samples},
         {"antialias", name_of(scene.render.antialias)},
         {"aa_threshold", scene.render.aa_threshold},
+        {"packet_levels", scene.render.packet_levels},
         {"seconds", {{"load", r.load_seconds}, {"prepare", r.prepare_seconds}}},
         {"rays",
          {{"primary", rays.primary},

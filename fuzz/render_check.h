@@ -1,7 +1,8 @@
 // What every loader's fuzz target checks (fuzz/*_fuzzer.cpp): a bad input must end in a
 // SceneError whose message starts with the file's name; an input that loads must render (shrunk
 // to a thumbnail) without crashing or hanging, and to the same image with every acceleration
-// structure, which all answer the same queries bit for bit (tests/accel_test.cpp).
+// structure, which all answer the same queries bit for bit (tests/accel_test.cpp), and with its
+// reflected and transmitted rays cast ahead in packets (RenderSettings::packet_levels).
 #pragma once
 
 #include "trace/accel/accel.h"
@@ -50,6 +51,11 @@ int check_loader(const std::uint8_t* data, std::size_t size, const std::string& 
                              std::string(EnumNames<AccelKind>::names[0]).c_str());
                 std::abort();
             }
+        }
+        scene.render.packet_levels = 3;
+        if (render(World(scene, AccelKind::bvh)).bytes().rgb != first.rgb) {
+            std::fprintf(stderr, "--packet-levels 3 renders a different image\n");
+            std::abort();
         }
     });
     return 0;

@@ -74,6 +74,27 @@ TEST(Cli, TheKernelIsNamedForcedByGlintKernelAndCheckedAtStartUp) {
     EXPECT_FALSE(fs::exists(dir / "b.png"));
 }
 
+// --packet-levels casts the first levels of each tile's reflected and transmitted rays ahead
+// in packets (TileLighting, whose own test checks every ray): the same bytes and ray counts as
+// without, and --stats says how many levels were asked for. Packets run in the eight-wide BVH
+// alone, hence --accel bvh for a scene that `auto` would trace with the list.
+TEST(Cli, PacketLevelsCastAheadAndLeaveTheImageAsItWas) {
+    const fs::path dir = fresh_dir();
+    const std::string render = "render '" GLINT_SOURCE_DIR
+                               "/scenes/default.json' --size 64x48 --mode ray --accel bvh --stats ";
+    const Outcome alone = glint(dir, render + "a.json -o a.png");
+    ASSERT_EQ(alone.exit_code, 0) << alone.err;
+    const Outcome ahead = glint(dir, render + "b.json -o b.png --packet-levels 3");
+    ASSERT_EQ(ahead.exit_code, 0) << ahead.err;
+    EXPECT_EQ(slurp(dir / "a.png"), slurp(dir / "b.png"));
+    const auto a = nlohmann::json::parse(slurp(dir / "a.json"));
+    const auto b = nlohmann::json::parse(slurp(dir / "b.json"));
+    EXPECT_EQ(a["packet_levels"], 0);
+    EXPECT_EQ(b["packet_levels"], 3);
+    EXPECT_GT(b["rays"]["reflection"], 0);
+    EXPECT_EQ(a["rays"], b["rays"]);
+}
+
 // No display: the preview says so and names the two ways on, and opens nothing.
 TEST(Cli, PreviewWithoutADisplayNamesGlintRenderAndXvfbRun) {
     const fs::path dir = fresh_dir();
@@ -279,6 +300,7 @@ INSTANTIATE_TEST_SUITE_P(EveryClass, BadRunTest, ::testing::Values(
     BadRun{"samples beyond 16", "", "compare --samples 17", "--samples"},
     BadRun{"unknown antialiasing", "", "render --aa jitter", "--aa"},
     BadRun{"threshold out of range", "", "render --aa-threshold 1.5", "--aa-threshold"},
+    BadRun{"packet levels beyond 64", "", "render --packet-levels 65", "--packet-levels: Value 65 not in range 0 to 64"},
     BadRun{"scene: samples beyond 16", R"({"render": {"samples": 17}})", "render scene.json", "scene.json: /render/samples: must be between 1 and 16"},
     BadRun{"scene: unknown antialiasing", R"({"render": {"antialias": "jitter"}})", "render scene.json", "scene.json: /render/antialias: expected uniform or adaptive"},
     BadRun{"scene: threshold out of range", R"({"render": {"aa_threshold": -0.1}})", "render scene.json", "scene.json: /render/aa_threshold: must be between 0 and 1"},
