@@ -389,15 +389,14 @@ BENCHMARK(GlintShadow)->Apply(peer_arguments);
 BENCHMARK(GlintShadowPackets)->Apply(peer_arguments);
 
 // ---------------------------------------------------------------------------------------------
-// Secondary rays in packets (docs/PERFORMANCE.md, "Round two's last changes, and secondary rays
-// in packets"): a frame shaded from its primary hits as render() shades it, tile by tile (one
-// thread), with the
-// first `levels` levels of each tile's ray trees cast ahead in packets (TileLighting, as
-// `--packet-levels` asks; 0: only the primary hits' shadow rays). Scenes, at 960×540, each in
-// the eight-wide BVH, whose traversal alone takes packets: SPD's balls-4, whose reflections all
-// leave spheres; the same with its floor a mirror (reflectivity 0.5); SPD's gears-4 (glass
-// gears on a mirror floor); the shipped mirrors.json (two facing flat mirrors, max_depth 12;
-// `auto` would take the list for its few objects).
+// Secondary rays in packets (docs/PERFORMANCE.md, "Round two's last changes, and secondary rays in
+// packets"): a frame shaded from its primary hits as render() shades it, tile by tile (one thread),
+// with the first `levels` levels of each tile's ray trees cast ahead in packets (TileLighting, as
+// `--packet-levels` asks; 0: only the primary hits' shadow rays). Scenes, at 960×540, each in the
+// eight-wide BVH, whose traversal alone takes packets: SPD's balls-4, whose reflections all leave
+// spheres; the same with its floor a mirror (reflectivity 0.5); SPD's gears-4 (glass gears on a
+// mirror floor); the shipped mirrors.json (two facing flat mirrors, max_depth 12; `auto` would take
+// the list for its few objects).
 
 struct ShadingScene {
     std::string name;
