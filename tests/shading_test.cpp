@@ -204,12 +204,12 @@ TEST(TileLighting, ShadesEveryPixelExactlyAsItsRaysCastOneAtATime) {
             std::size_t ahead_rays[2] = {}; // reflected and transmitted rays cast ahead
             int deepest = 0;
             for (std::size_t k = 0; k < rays.size(); ++k) {
-                const PreparedHit prepared = lighting.at(k);
+                const CastAhead prepared = lighting.at(k);
                 const std::size_t lights = world.lights().size();
                 if (lights > 0) {
-                    ASSERT_EQ(prepared.ahead.node, k);
-                    ASSERT_EQ(prepared.ahead.lit, rays.size()); // the primary hits'
-                    const Real* light = prepared.ahead.light + k * lights;
+                    ASSERT_EQ(prepared.node, k);
+                    ASSERT_EQ(prepared.lit, rays.size()); // the primary hits'
+                    const Real* light = prepared.light + k * lights;
                     through_glass += std::count(light, light + lights, kThroughGlass);
                 }
                 const PixelSample alone = shade_pixel(world, rays[k], hits[k]);
@@ -226,8 +226,8 @@ TEST(TileLighting, ShadesEveryPixelExactlyAsItsRaysCastOneAtATime) {
                 // the tree cast alone then holds (or omits: its weight counts it).
                 const auto walk = [&](const auto& self, std::uint32_t n, const Ray& ray,
                                       int depth) -> void {
-                    const AheadNode& node = prepared.ahead.nodes[n];
-                    const SurfacePoint& at = prepared.ahead.surfaces[n];
+                    const AheadNode& node = prepared.nodes[n];
+                    const SurfacePoint& at = prepared.surfaces[n];
                     deepest = std::max(deepest, depth);
                     const Phong& m = world.material(node.hit.object);
                     const SecondaryRay next[2] = {reflected_ray(ray, at),
@@ -244,9 +244,8 @@ TEST(TileLighting, ShadesEveryPixelExactlyAsItsRaysCastOneAtATime) {
                         ASSERT_LT(depth, levels) << where << " pixel " << k;
                         ASSERT_GT(cast[kind], 0u) << where << " pixel " << k;
                         ++ahead_rays[kind];
-                        const AheadNode& child = prepared.ahead.nodes[node.next[kind]];
-                        const SurfacePoint& child_surface =
-                            prepared.ahead.surfaces[node.next[kind]];
+                        const AheadNode& child = prepared.nodes[node.next[kind]];
+                        const SurfacePoint& child_surface = prepared.surfaces[node.next[kind]];
                         const Hit hit = world.intersect(next[kind].ray, kInfinity, next[kind].skip);
                         ASSERT_EQ(child.hit.object, hit.object) << where << " pixel " << k;
                         ASSERT_EQ(child.hit.t, hit.t) << where << " pixel " << k;
@@ -260,7 +259,7 @@ TEST(TileLighting, ShadesEveryPixelExactlyAsItsRaysCastOneAtATime) {
                     }
                 };
                 if (levels == 0) { // the default path keeps no nodes
-                    ASSERT_EQ(prepared.ahead.nodes, nullptr) << where;
+                    ASSERT_EQ(prepared.nodes, nullptr) << where;
                 } else if (hits[k].found()) {
                     walk(walk, static_cast<std::uint32_t>(k), rays[k], 0);
                 }

@@ -6,7 +6,7 @@ namespace glint {
 inline namespace GLINT_PRECISION {
 
 PixelSample shade_pixel(const World& world, const Ray& ray, const Hit& primary,
-                        const PreparedHit& prepared, RayRecorder* recorder) {
+                        const CastAhead& ahead, RayRecorder* recorder) {
     PixelSample sample;
     sample.hit = primary;
     sample.recorder = recorder;
@@ -17,9 +17,9 @@ PixelSample shade_pixel(const World& world, const Ray& ray, const Hit& primary,
         sample.colour = world.background();
     } else {
         const SurfacePoint surface =
-            prepared.surface ? *prepared.surface : world.surface(ray, primary);
+            ahead.surfaces ? ahead.surfaces[ahead.node] : world.surface(ray, primary);
         sample.normal = surface.shading;
-        sample.colour = shade(world, ray, primary, surface, 0, 1, sample, prepared.ahead);
+        sample.colour = shade(world, ray, primary, surface, 0, 1, sample, ahead);
     }
     if (recorder) recorder->end(sample.colour);
     sample.recorder = nullptr; // the sample outlives the call; the recorder need not

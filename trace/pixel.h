@@ -18,17 +18,12 @@ struct PixelSample : RayTree {
     Vec3 normal{0}; // unit shading normal at the primary hit; zero where there is none
 };
 
-// What a tile's packets found at a primary hit before it is shaded (TileLighting): its surface,
-// and what was cast ahead of shade() in its ray tree (trace/shading.h).
-struct PreparedHit {
-    const SurfacePoint* surface = nullptr;
-    CastAhead ahead;
-};
-
-// Shades a camera ray from its primary hit, from what `prepared` holds of it where given;
-// reports the ray tree to `recorder` where given (trace/recorder.h: `glint explain`).
+// Shades a camera ray from its primary hit, from what a tile's packets found of it beforehand
+// where given (`ahead`, TileLighting: its node's surface, its shadow verdicts, the hits cast
+// ahead in its ray tree); reports the ray tree to `recorder` where given (trace/recorder.h:
+// `glint explain`).
 PixelSample shade_pixel(const World& world, const Ray& ray, const Hit& primary,
-                        const PreparedHit& prepared = {}, RayRecorder* recorder = nullptr);
+                        const CastAhead& ahead = {}, RayRecorder* recorder = nullptr);
 
 // The primary hits of a tile (or any group of pixels whose neighbours are close), prepared for
 // shading: every surface, and every light's shadow verdict, cast in packets of kMaxPacket rays
@@ -56,11 +51,10 @@ class TileLighting {
     void prepare(const World& world, std::span<const Ray> rays, std::span<const Hit> hits,
                  int levels = 0);
     // Pixel k's (the k-th hit given).
-    PreparedHit at(std::size_t k) const {
-        return {&surfaces_[k],
-                {surfaces_.data(), nodes_.empty() ? nullptr : nodes_.data(),
-                 lights_ > 0 ? light_.data() : nullptr, static_cast<std::uint32_t>(k),
-                 static_cast<std::uint32_t>(lit_)}};
+    CastAhead at(std::size_t k) const {
+        return {surfaces_.data(), nodes_.empty() ? nullptr : nodes_.data(),
+                lights_ > 0 ? light_.data() : nullptr, static_cast<std::uint32_t>(k),
+                static_cast<std::uint32_t>(lit_)};
     }
 
   private:

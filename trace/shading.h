@@ -107,7 +107,7 @@ struct AheadNode {
     std::uint32_t next[2] = {kNone, kNone};
 };
 struct CastAhead {
-    const SurfacePoint* surfaces = nullptr; // node n's, where its hit is found
+    const SurfacePoint* surfaces = nullptr; // node n's, where its hit is found; null: none made
     const AheadNode* nodes = nullptr;       // null: no reflected or transmitted ray cast ahead
     // Node n's shadow verdicts at light[n · lights + j], where not null and n < lit: per light, the
     // factor light_through would find, or kThroughGlass where the first shadow ray meets glass and
