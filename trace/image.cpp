@@ -88,14 +88,23 @@ void put_u32(std::string& out, std::uint32_t v) {
     out.append(bytes, 4);
 }
 
-void put_chunk(std::string& out, const char* type, const std::string& data) {
-    put_u32(out, static_cast<std::uint32_t>(data.size()));
+// A PNG chunk written in place: begin_chunk puts its length and type and returns where the type
+// starts; the caller appends its `size` bytes of data; end_chunk puts the CRC of type and data.
+std::size_t begin_chunk(std::string& out, const char* type, std::size_t size) {
+    put_u32(out, static_cast<std::uint32_t>(size));
     const std::size_t start = out.size();
     out.append(type, 4);
-    out += data;
+    return start;
+}
+void end_chunk(std::string& out, std::size_t start) {
     const auto* bytes = reinterpret_cast<const Bytef*>(out.data() + start);
     put_u32(out,
             static_cast<std::uint32_t>(crc32(0, bytes, static_cast<uInt>(out.size() - start))));
+}
+void put_chunk(std::string& out, const char* type, const std::string& data) {
+    const std::size_t start = begin_chunk(out, type, data.size());
+    out += data;
+    end_chunk(out, start);
 }
 
 // Rows [y0, y1) of the image, each with its PNG filter byte, deflated as raw blocks that end on
@@ -165,9 +174,7 @@ std::string encode_png(const Image& image) {
     header += std::string("\x08\x02\x00\x00\x00", 5); // 8-bit RGB, deflate, no interlace
     put_chunk(png, "IHDR", header);
 
-    put_u32(png, static_cast<std::uint32_t>(idat_size));
-    const std::size_t idat = png.size();
-    png.append("IDAT", 4);
+    const std::size_t idat = begin_chunk(png, "IDAT", idat_size);
     png.append("\x78\x01", 2); // zlib header: deflate, 32 KiB window, fastest
     uLong adler = adler32(0, nullptr, 0);
     const std::size_t row_bytes = static_cast<std::size_t>(image.width) * 3 + 1; // filter byte
@@ -177,8 +184,7 @@ std::string encode_png(const Image& image) {
         adler = adler32_combine(adler, adlers[b], static_cast<z_off_t>(row_bytes * rows));
     }
     put_u32(png, static_cast<std::uint32_t>(adler));
-    const auto* chunk = reinterpret_cast<const Bytef*>(png.data() + idat);
-    put_u32(png, static_cast<std::uint32_t>(crc32(0, chunk, static_cast<uInt>(png.size() - idat))));
+    end_chunk(png, idat);
     put_chunk(png, "IEND", "");
     return png;
 }
