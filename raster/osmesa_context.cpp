@@ -14,9 +14,9 @@ namespace {
 
 // libOSMesa is opened when the first context is made, not linked: it brings llvmpipe and LLVM
 // with it, whose loading and relocation cost every glint process about 65 ms before main()
-// (`glint --version` took 78 ms, 13 without it), though only the item buffer uses it. Once
-// opened it stays open, so that the leak checker still sees its allocations' module
-// (tools/lsan.supp).
+// (`glint --version` took 78 ms, 13 without it: docs/PERFORMANCE.md, "Start-up and the
+// write"), though only the item buffer uses it. Once opened it stays open, so that the leak
+// checker still sees its allocations' module (tools/lsan.supp).
 struct OsmesaLibrary {
     decltype(&OSMesaCreateContextAttribs) create_context_attribs;
     decltype(&OSMesaMakeCurrent) make_current;

@@ -297,7 +297,7 @@ inline SurfaceSample mesh_surface(const Mesh& mesh, std::uint32_t triangle, Real
     const glm::uvec3 tri = mesh.triangles[triangle];
     // References, not copies: GCC copied each corner through the stack in two stores read back
     // by one load that spans them, which the store buffer cannot forward (a fifth of the
-    // function's time on balls-4's floor).
+    // function's time on balls-4's floor: docs/PERFORMANCE.md, "Three stalls the profiler named").
     const Vec3 &p0 = mesh.vertices[tri.x], &p1 = mesh.vertices[tri.y], &p2 = mesh.vertices[tri.z];
     const Real b0 = 1.0_r - u - v;
     // Barycentric interpolation keeps the point on the triangle's plane up to γ7·Σ|bᵢ·pᵢ|
