@@ -1,6 +1,5 @@
 #include "trace/passes.h"
 
-#include "trace/render.h"
 #include "trace/sampling.h"
 #include "trace/stopwatch.h"
 

@@ -11,6 +11,7 @@
 
 #include "trace/pixel.h"
 #include "trace/render_result.h"
+#include "trace/tile_shading.h"
 
 #include <functional>
 
@@ -51,15 +52,6 @@ class ThreadSchedule final : public TileSchedule {
 
   private:
     TileProgress progress_;
-};
-
-// Shown every pixel the centres pass traces, with what its path found (the preview's views).
-class CentreObserver {
-  public:
-    virtual void pixel(int x, int y, const Ray& ray, const PixelSample& sample) = 0;
-
-  protected:
-    ~CentreObserver() = default;
 };
 
 struct FrameRequest {
