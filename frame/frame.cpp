@@ -1,7 +1,5 @@
 #include "frame/frame.h"
 
-#include "frame/gl_pass.h"
-
 #include "trace/stopwatch.h"
 
 #include <stdexcept>

@@ -8,7 +8,7 @@
 // beside the tracing.
 #pragma once
 
-#include "frame/frame.h"
+#include "frame/frame_settings.h"
 
 #include <future>
 #include <thread>
