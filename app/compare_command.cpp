@@ -3,6 +3,7 @@
 #include "app/options.h"
 #include "app/phase_json.h"
 
+#include "io/png.h"
 #include "trace/image_metrics.h"
 
 #include <nlohmann/json.hpp>

@@ -1,7 +1,7 @@
 #include "app/distributed.h"
 
 #include "app/options.h"
-#include "trace/scene_loader.h"
+#include "io/error.h"
 
 #include <climits>
 #include <cstdio>

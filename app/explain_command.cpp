@@ -3,6 +3,7 @@
 #include "app/options.h"
 
 #include "frame/explain.h"
+#include "io/write_file.h"
 #include "trace/image.h"
 
 #include <cstdio>

@@ -1,6 +1,6 @@
 #include "app/options.h"
 
-#include "trace/scene_loader.h"
+#include "io/load_scene.h"
 
 #include <cerrno>
 #include <cstring>

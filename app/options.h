@@ -5,7 +5,7 @@
 #include "app/commands.h"
 #include "frame/frame.h"
 
-#include "trace/model_scene.h"
+#include "io/model_scene.h"
 
 #include <filesystem>
 #include <stdexcept>

@@ -2,7 +2,7 @@
 #include "app/options.h"
 
 #include "preview/preview.h"
-#include "raster/window.h"
+#include "preview/window.h"
 
 #include <cctype>
 #include <cstdio>

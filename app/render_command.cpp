@@ -5,8 +5,10 @@
 #include "app/progress.h"
 #include "frame/gl_pass.h"
 
+#include "io/exr.h"
+#include "io/png.h"
+#include "io/write_file.h"
 #include "trace/cutoff.h"
-#include "trace/exr.h"
 #include "trace/image.h"
 #include "trace/kernel.h"
 #include "trace/stopwatch.h"

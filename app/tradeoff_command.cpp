@@ -7,9 +7,10 @@
 #include "app/rank_records.h"
 #include "app/options.h"
 
+#include "io/error.h"
+#include "io/write_file.h"
 #include "trace/cutoff.h"
 #include "trace/image_metrics.h"
-#include "trace/scene_loader.h"
 #include "trace/stopwatch.h"
 
 #include <tbb/task_arena.h>

@@ -5,10 +5,11 @@
 //
 //   glint bench                                   (everything; a few minutes)
 //   glint bench --benchmark_filter='^(Glint|Embree)'   (Google Benchmark's flags pass through)
+#include "io/json_loader.h"
+#include "io/load_scene.h"
 #include "trace/kernel.h"
 #include "trace/pixel.h"
 #include "trace/render.h"
-#include "trace/scene_loader.h"
 #include "trace/shading.h"
 
 #include <benchmark/benchmark.h>

@@ -1,6 +1,6 @@
 #include "frame/explain.h"
 
-#include "trace/scene_loader.h"
+#include "io/error.h"
 #include "trace/shapes/table.h"
 #include "trace/transform.h"
 

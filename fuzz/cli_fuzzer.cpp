@@ -4,7 +4,7 @@
 // hang is a finding. Nothing is rendered or written.
 #include "app/commands.h"
 #include "app/options.h"
-#include "trace/scene_loader.h"
+#include "io/error.h"
 
 #include <cstdint>
 #include <cstdio>

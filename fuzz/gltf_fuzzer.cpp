@@ -1,9 +1,9 @@
-// libFuzzer target: any bytes as a glTF or GLB model (trace/gltf_loader.h), checked as every
+// libFuzzer target: any bytes as a glTF or GLB model (io/gltf_loader.h), checked as every
 // loader is (fuzz/render_check.h): a model that loads is rendered. No file beside it can be read
 // (an external buffer or image is refused, as a missing one is). Its seeds are written by
 // tests/gltf_seeds.cpp from tests/gltf_builder.h (the fuzz.gltf_seeds test), not downloaded.
 #include "fuzz/render_check.h"
-#include "trace/gltf_loader.h"
+#include "io/gltf_loader.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// libFuzzer target: any bytes as an NFF scene (trace/nff_loader.cpp), checked as every loader is
+// libFuzzer target: any bytes as an NFF scene (io/nff_loader.h), checked as every loader is
 // (fuzz/render_check.h). Seeds: small SPD scenes and the heads of two larger ones.
 #include "fuzz/render_check.h"
 

@@ -1,9 +1,9 @@
-// libFuzzer target: any bytes as an OBJ mesh (trace/obj_loader.h), checked as every loader is
+// libFuzzer target: any bytes as an OBJ mesh (io/obj_loader.h), checked as every loader is
 // (fuzz/render_check.h). What follows a line "#%mtl" is the material library the OBJ's mtllib
 // reads, so that tinyobjloader's MTL parser is fuzzed too. A mesh that loads is placed in a
 // scene (each part an object, the camera looking at the mesh's box) and rendered.
 #include "fuzz/render_check.h"
-#include "trace/obj_loader.h"
+#include "io/obj_loader.h"
 
 #include <glm/glm.hpp>
 

@@ -5,9 +5,9 @@
 // reflected and transmitted rays cast ahead in packets (RenderSettings::packet_levels).
 #pragma once
 
+#include "io/error.h"
 #include "trace/accel/accel.h"
 #include "trace/render.h"
-#include "trace/scene_loader.h"
 
 #include <tbb/task_arena.h>
 

@@ -1,4 +1,4 @@
-// libFuzzer target: any bytes as a JSON scene (trace/scene_loader.h), checked as every loader is
+// libFuzzer target: any bytes as a JSON scene (io/json_loader.h), checked as every loader is
 // (fuzz/render_check.h).
 #include "fuzz/render_check.h"
 

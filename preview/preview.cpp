@@ -8,10 +8,11 @@
 
 #include "frame/explain.h"
 
+#include "io/error.h"
+#include "io/png.h"
+#include "preview/window.h"
 #include "raster/item_buffer.h"
-#include "raster/window.h"
 #include "trace/image_metrics.h"
-#include "trace/scene_loader.h"
 #include "trace/stopwatch.h"
 
 #include <glad/gl.h>

@@ -301,7 +301,7 @@ void expect_list_image(const char* seed, AccelKind accel, int width = 12, int he
 
 TEST_P(AccelTest, RendersAreByteIdenticalToTheListForARayLongerThanFloatResolvesItsLeaves) {
     // Found by fuzz/nff_fuzzer.cpp: the camera inside a sphere of radius 1e15 (9.99e14 since NFF
-    // scenes meet the scene check's reach rule, trace/scene_check.h, as JSON ones did), whose
+    // scenes meet the scene check's reach rule, io/scene_check.h, as JSON ones did), whose
     // reflections bounce 2e15 across it past spheres 0.15 in radius. At that distance the
     // crossings of neighbouring split planes round together, and the kd-tree, comparing them
     // exactly, skipped a leaf whose sphere the list hits. It now skips a child only when it is

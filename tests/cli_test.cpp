@@ -4,6 +4,7 @@
 #include "run_glint.h"
 #include "test_scenes.h"
 
+#include "io/png.h"
 #include "trace/image.h"
 
 #include <nlohmann/json.hpp>

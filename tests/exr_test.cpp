@@ -5,8 +5,8 @@
 #include "test_scenes.h"
 
 #include "frame/frame.h"
+#include "io/exr.h"
 #include "trace/cutoff.h"
-#include "trace/exr.h"
 #include "trace/render.h"
 #include "trace/sampling.h"
 

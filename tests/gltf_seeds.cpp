@@ -3,6 +3,7 @@
 // and matrix nodes, instanced meshes, a camera, a light, a texture with a sampler, a strip).
 #include "gltf_builder.h"
 
+#include "io/png.h"
 #include "trace/image.h"
 
 #include <filesystem>

@@ -8,8 +8,8 @@
 #include "gltf_builder.h"
 
 #include "frame/frame.h"
-#include "trace/gltf_loader.h"
-#include "trace/scene_loader.h"
+#include "io/gltf_loader.h"
+#include "io/json_loader.h"
 
 #include <set>
 

@@ -5,9 +5,10 @@
 #include "gltf_builder.h"
 #include "run_glint.h"
 
-#include "trace/gltf_loader.h"
+#include "io/error.h"
+#include "io/gltf_loader.h"
+#include "io/png.h"
 #include "trace/image.h"
-#include "trace/scene_loader.h"
 
 #include <gtest/gtest.h>
 

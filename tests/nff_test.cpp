@@ -2,8 +2,9 @@
 // input reported with its file and line.
 #include "test_scenes.h"
 
-#include "trace/polygon.h"
-#include "trace/scene_loader.h"
+#include "io/load_scene.h"
+#include "io/nff_loader.h"
+#include "io/polygon.h"
 #include "trace/world.h"
 
 #include <gtest/gtest.h>
@@ -224,7 +225,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadNff{"infinite", kV + "s 0 0 0 inf\n", "2: expected a number"},
         BadNff{"huge", kV + "s 1e300 0 0 1\n", "2: s's centre is beyond 1e15"},
         BadNff{"zero radius", kV + "s 0 0 0 0\n", "2: the object's placement: transform is singular"},
-        // The scene check's reach rule (trace/scene_check.h), which NFF scenes now meet too.
+        // The scene check's reach rule (io/scene_check.h), which NFF scenes now meet too.
         BadNff{"sphere reaching past 1e15", kV + "s 9e14 0 0 9e14\n",
                "2: the object's placement: the placed object reaches 1.8e+15 from the origin"},
         BadNff{"polygon of 2", kV + "p 2\n0 0 0\n1 1 1\n", "2: p's vertex count must be between 3"},

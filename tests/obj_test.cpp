@@ -2,9 +2,9 @@
 // placed many times stored once, and every malformed line reported with its file and line.
 #include "test_scenes.h"
 
-#include "trace/obj_loader.h"
-#include "trace/polygon.h"
-#include "trace/scene_loader.h"
+#include "io/load_scene.h"
+#include "io/obj_loader.h"
+#include "io/polygon.h"
 #include "trace/world.h"
 
 #include <gtest/gtest.h>

@@ -3,8 +3,8 @@
 // same pixels (±2/255) on random scenes of spheres, planes and boxes under arbitrary affine
 // transforms with reflections and shadows, and with glass (refraction, shadows through
 // transmissive surfaces) and a checker, away from silhouettes, shadow and checker edges.
+#include "io/json_loader.h"
 #include "trace/render.h"
-#include "trace/scene_loader.h"
 
 #include <gtest/gtest.h>
 

@@ -2,6 +2,8 @@
 // and spawned rays that never re-hit the surface they leave (no acne), at scales 1e-3 … 1e3.
 #include "test_scenes.h"
 
+#include "io/png.h"
+#include "io/write_file.h"
 #include "trace/render.h"
 
 #include <gtest/gtest.h>
@@ -236,7 +238,7 @@ TEST(Output, AFailedWriteLeavesTheOldFileAndNoTemporaryFile) {
 }
 
 TEST(Output, PngsDecodeToEveryPixelWrittenAtSizesThatSplitIntoBands) {
-    // write_png deflates bands of 64 rows in parallel into one zlib stream (trace/image.cpp).
+    // write_png deflates bands of 64 rows in parallel into one zlib stream (io/png.cpp).
     // Each image must come back byte for byte through an independent decoder (stb_image), and
     // its stream must pass zlib's own checks (uncompress verifies the combined Adler-32).
     namespace fs = std::filesystem;

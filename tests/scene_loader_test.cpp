@@ -2,7 +2,8 @@
 // file, the JSON path (or line and column) and what is wrong.
 #include "test_scenes.h"
 
-#include "trace/scene_check.h"
+#include "io/nff_loader.h"
+#include "io/scene_check.h"
 
 #include <gtest/gtest.h>
 
@@ -206,7 +207,7 @@ TEST(SceneLoader, ObjectNamesLineUpWithTheObjects) {
 namespace glint {
 namespace {
 
-// trace/scene_check.h: the rules hold a Scene whatever made it; the loader only names places.
+// io/scene_check.h: the rules hold a Scene whatever made it; the loader only names places.
 // A scene built in code, broken one part at a time, is refused with the place its ScenePlaces
 // gives for the part's model path, and the same rule reads the same in JSON and NFF.
 TEST(SceneCheck, EachRuleNamesThePartsModelPathThroughTheLoadersPlaces) {

@@ -1,7 +1,8 @@
 // Helpers shared by the tests: scenes from JSON text, and rays in the scene's own coordinates.
 #pragma once
 
-#include "trace/scene_loader.h"
+#include "io/json_loader.h"
+#include "io/load_scene.h"
 #include "trace/transform.h"
 #include "trace/world.h"
 

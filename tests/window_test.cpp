@@ -4,11 +4,11 @@
 
 #include "frame/explain.h"
 #include "frame/frame.h"
+#include "io/png.h"
 #include "preview/preview.h"
 #include "preview/ray_overlay.h"
 #include "preview/views.h"
 #include "trace/image_metrics.h"
-#include "trace/scene_loader.h"
 
 #include <gtest/gtest.h>
 

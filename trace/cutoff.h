@@ -36,7 +36,7 @@ CutoffBound cutoff_bound(const Scene& scene, const RenderResult& render);
 // Per pixel, in radiance: the most the omitted rays could have added to any channel of the
 // pixel's unclamped colour (its summed omitted weight times the largest channel of
 // ray_radiance_bound): 0 where nothing was omitted, +inf where the scene's bound is infinite.
-// The `cutoff` AOV of an EXR (trace/exr.h).
+// The `cutoff` AOV of an EXR (io/exr.h).
 std::vector<float> cutoff_radiance(const Scene& scene, const RenderResult& render);
 
 // Channels of `truncated` (the render the bound was made for) not within [0, bound] below the

@@ -79,7 +79,7 @@ struct Image {
 };
 
 // Linear float RGB, row-major, top row first: colour as the tracer computes it, kept in float
-// until a writer turns it into a file's format (Image's bytes above, OpenEXR in trace/exr.h).
+// until a writer turns it into a file's format (Image's bytes above for a PNG, io/png.h; OpenEXR, io/exr.h).
 struct FloatImage {
     int width = 0;
     int height = 0;
@@ -109,31 +109,5 @@ inline std::uint8_t to_byte(float c) {
 
 // Each channel of `colour` through to_byte: the PNG's rule (DESIGN §2, §11).
 Image to_bytes(const FloatImage& colour);
-
-// Writes `bytes` to `path` through a temporary file in the same directory and a rename, so
-// that `path` is either untouched or complete. Throws std::runtime_error naming the path.
-void write_file_atomically(const std::filesystem::path& path, const std::string& bytes);
-
-// Writes encode()'s bytes to `path` through write_file_atomically; an encoding failure
-// (std::runtime_error) is rethrown naming the path and `format`.
-template <class Encode>
-void write_encoded(const std::filesystem::path& path, const char* format, const Encode& encode) {
-    std::string bytes;
-    try {
-        bytes = encode();
-    } catch (const std::runtime_error& e) {
-        throw std::runtime_error("cannot encode " + path.string() + " as " + format + ": " +
-                                 e.what());
-    }
-    write_file_atomically(path, bytes);
-}
-
-void write_png(const std::filesystem::path& path, const Image& image);
-
-// The PNG file write_png writes: 8-bit RGB, deflated in parallel bands.
-std::string encode_png(const Image& image);
-
-// Throws std::runtime_error naming the path when it cannot be read as an image.
-Image read_png(const std::filesystem::path& path);
 
 } // namespace glint

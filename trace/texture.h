@@ -1,28 +1,10 @@
-// Base colour textures (docs/SCENES.md, "Textures"): images decoded by stb_image, looked up
-// bilinearly at a hit's texture coordinates with the texture's wrap modes.
+// Base colour textures looked up at a hit (docs/SCENES.md, "Textures"): bilinearly at its texture
+// coordinates, with the texture's wrap modes. Files are decoded by io/texture_file.h.
 #pragma once
 
 #include "trace/scene.h"
 
-#include <filesystem>
-#include <optional>
-#include <string>
-
 namespace glint {
-
-// The largest texture glint decodes, in pixels (a 8192 × 8192 image: 192 MiB as RGB).
-inline constexpr std::size_t kMaxTexturePixels = std::size_t{1} << 26;
-
-// A PNG or JPEG file's bytes (`bytes`, named `name`) as an image, or nothing with `why` set
-// ("not a PNG or JPEG image", "8192 × 16384 pixels, beyond the 67108864 glint decodes").
-std::optional<TextureImage> decode_texture(const std::string& bytes, const std::string& name,
-                                           std::string& why);
-
-// A texture file read and decoded, or nothing with a warning in `warnings` naming `from` (the
-// model file and place that names it): a model that only decorates itself with a texture
-// renders without it when it cannot be read.
-std::optional<TextureImage> load_texture(const std::filesystem::path& path, const std::string& from,
-                                         std::vector<std::string>& warnings);
 
 // What a lookup found: the colour, and where in the image it came from (`glint explain`).
 struct TexelSample {

@@ -11,7 +11,7 @@
 // tessellation instead.
 //
 // The names, traits, bounds and tessellations do not depend on the tracer's precision; the
-// loaders (glint_scene) read them through the same types.
+// loaders (glint_io) read them through the same types.
 #pragma once
 
 #include "trace/names.h"

@@ -2,12 +2,13 @@
 // index beyond the vertices is only a warning, and a face's vertex count is kept in a byte. So
 // every line is checked here first, and an error names the line; tinyobjloader then reads the
 // checked text and its checked MTL libraries. Faces are triangulated by ear clipping
-// (trace/polygon.h): tinyobjloader's own triangulation is a fan, wrong for concave faces.
-#include "trace/obj_loader.h"
+// (io/polygon.h): tinyobjloader's own triangulation is a fan, wrong for concave faces.
+#include "io/obj_loader.h"
 
-#include "trace/polygon.h"
-#include "trace/scene_loader.h"
-#include "trace/texture.h"
+#include "io/error.h"
+#include "io/polygon.h"
+#include "io/read_text.h"
+#include "io/texture_file.h"
 
 #include <tiny_obj_loader.h>
 
@@ -255,7 +256,7 @@ Material mtl_material(const tinyobj::material_t& m, const std::string& name) {
     material.diffuse = mtl_colour(m.diffuse, "Kd", m.name, name);
     material.ambient = material.diffuse;
     material.specular = mtl_colour(m.specular, "Ks", m.name, name);
-    // Ns's range is the scene check's (trace/scene_check.h), as `shininess`.
+    // Ns's range is the scene check's (io/scene_check.h), as `shininess`.
     material.shininess = m.shininess;
     if (!(m.dissolve >= 0 && m.dissolve <= 1)) fail("d must be between 0 and 1 (Tr: 1 − d)");
     if (m.illum >= 3 && m.illum <= 7)

@@ -3,7 +3,7 @@
 // a JSON pointer ("/accessors/3"), or the GLB chunk.
 #pragma once
 
-#include "trace/model_scene.h"
+#include "io/model_scene.h"
 
 #include <filesystem>
 #include <functional>

@@ -1,4 +1,4 @@
-#include "raster/window.h"
+#include "preview/window.h"
 
 #include <glad/gl.h> // before GLFW (GLFW_INCLUDE_NONE: glad provides the GL declarations)
 

@@ -1,5 +1,5 @@
 // tinygltf's implementation, compiled here rather than linked from Debian's libtinygltf.so: so
-// that glint decodes images itself (stb, trace/texture.h), with a warning where a texture cannot
+// that glint decodes images itself (stb, io/texture_file.h), with a warning where a texture cannot
 // be read, and so that the sanitizers and the glTF fuzzer see the parser's code too.
 #define TINYGLTF_IMPLEMENTATION
 #define TINYGLTF_NO_STB_IMAGE

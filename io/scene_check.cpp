@@ -1,6 +1,6 @@
-#include "trace/scene_check.h"
+#include "io/scene_check.h"
 
-#include "trace/scene_loader.h"
+#include "io/error.h"
 #include "trace/shapes/table.h"
 
 #include <algorithm>

@@ -1,8 +1,12 @@
-// load_scene (trace/scene_loader.h): a scene or a model file, read by its extension. Apart from
+// load_scene (io/load_scene.h): a scene or a model file, read by its extension. Apart from
 // the loaders, so that none of them depends on another through it.
-#include "trace/gltf_loader.h"
-#include "trace/model_scene.h"
-#include "trace/scene_loader.h"
+#include "io/load_scene.h"
+
+#include "io/gltf_loader.h"
+#include "io/json_loader.h"
+#include "io/model_scene.h"
+#include "io/nff_loader.h"
+#include "io/read_text.h"
 
 #include <cctype>
 #include <tuple>

@@ -2,6 +2,7 @@
 // asks for, each channel 32-bit (FLOAT, or UINT for ids), scan lines, ZIP compression.
 #pragma once
 
+#include "io/write_file.h"
 #include "trace/image.h"
 #include "trace/names.h"
 

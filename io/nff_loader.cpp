@@ -1,9 +1,11 @@
 // NFF, the Neutral File Format of Eric Haines' Standard Procedural Databases (docs/SCENES.md,
 // "NFF scenes"). Read as whitespace-separated tokens, since the generators put on one line what
 // the format describes on several; every error names the file and the line of the token at fault.
-#include "trace/polygon.h"
-#include "trace/scene_check.h"
-#include "trace/scene_loader.h"
+#include "io/error.h"
+#include "io/nff_loader.h"
+#include "io/polygon.h"
+#include "io/read_text.h"
+#include "io/scene_check.h"
 #include "trace/shapes/table.h"
 
 #include <cctype>
@@ -78,7 +80,7 @@ class NffReader {
     }
 
   private:
-    // A part of the scene model (trace/scene_check.h) as the line of the entity that gave it and
+    // A part of the scene model (io/scene_check.h) as the line of the entity that gave it and
     // the entity's field in NFF's words.
     std::string place_of(const std::string& path) const {
         const auto part = [&](std::size_t i) {
@@ -200,7 +202,7 @@ class NffReader {
         return v;
     }
 
-    // Its range is the scene check's (trace/scene_check.h); numbers are within ±1e15 here.
+    // Its range is the scene check's (io/scene_check.h); numbers are within ±1e15 here.
     glm::vec3 colour(const Token& entity, const char* what) {
         return glm::vec3(vec3(entity, what));
     }
@@ -252,7 +254,7 @@ class NffReader {
     }
 
     void fill(const Token& f) {
-        // Ranges are the scene check's (trace/scene_check.h), on the material they make.
+        // Ranges are the scene check's (io/scene_check.h), on the material they make.
         const glm::vec3 rgb = colour(f, "colour");
         const double kd = number(f, "Kd");
         const double ks = number(f, "Ks");

@@ -1,4 +1,4 @@
-#include "trace/polygon.h"
+#include "io/polygon.h"
 
 #include <cmath>
 #include <numeric>

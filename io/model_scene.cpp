@@ -1,7 +1,7 @@
-#include "trace/model_scene.h"
+#include "io/model_scene.h"
 
-#include "trace/obj_loader.h"
-#include "trace/scene_check.h"
+#include "io/obj_loader.h"
+#include "io/scene_check.h"
 #include "trace/shapes/table.h"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-#include "trace/exr.h"
+#include "io/exr.h"
 
 #include <ImfChannelList.h>
 #include <ImfCompressionAttribute.h>

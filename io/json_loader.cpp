@@ -1,7 +1,9 @@
-#include "trace/scene_loader.h"
+#include "io/json_loader.h"
 
-#include "trace/obj_loader.h"
-#include "trace/scene_check.h"
+#include "io/read_text.h"
+
+#include "io/obj_loader.h"
+#include "io/scene_check.h"
 #include "trace/shapes/table.h"
 
 #include <nlohmann/json.hpp>
@@ -102,7 +104,7 @@ class Loader {
     }
 
   private:
-    // A part of the scene model (trace/scene_check.h) as the place in this file it came from:
+    // A part of the scene model (io/scene_check.h) as the place in this file it came from:
     // the JSON pointer of its part, then as much of the rest of its path as the file spells out.
     std::string place_of(const std::string& path) const {
         std::vector<std::string> parts = path_parts(path);
@@ -185,7 +187,7 @@ class Loader {
         return static_cast<float>(std::clamp(number(node), -3e38, 3e38));
     }
 
-    // A whole number that an int holds; its range is the scene check's (trace/scene_check.h).
+    // A whole number that an int holds; its range is the scene check's (io/scene_check.h).
     int whole(const Node& node) const {
         const double v = number(node);
         if (v != std::floor(v)) fail(node, "must be a whole number");
@@ -201,7 +203,7 @@ class Loader {
         return {number(node[0]), number(node[1]), number(node[2])};
     }
 
-    // A position or a colour: its range is the scene check's (trace/scene_check.h). A colour
+    // A position or a colour: its range is the scene check's (io/scene_check.h). A colour
     // beyond float's range stays beyond it (+inf), so that the check sees it.
     DVec3 point(const Node& node) const { return vec3(node); }
     glm::vec3 colour(const Node& node) const {
@@ -518,18 +520,6 @@ class Loader {
     mutable std::map<std::string, std::vector<std::pair<std::uint32_t, std::uint32_t>>> obj_cache_;
 };
 
-// "file:line:column" of the byte at `offset` (0-based) in `text`.
-std::string place(const std::string& name, const std::string& text, std::size_t offset) {
-    std::size_t line = 1, column = 1;
-    for (std::size_t i = 0; i < std::min(offset, text.size()); ++i) {
-        if (text[i] == '\n')
-            ++line, column = 1;
-        else
-            ++column;
-    }
-    return name + ":" + std::to_string(line) + ":" + std::to_string(column);
-}
-
 // nlohmann's message without its "[json.exception.…] parse error at line 1, column 2: " prefix.
 std::string bare_message(const json::exception& e) {
     std::string what = e.what();
@@ -543,30 +533,6 @@ std::string bare_message(const json::exception& e) {
 
 } // namespace
 
-void check_json_nesting(const std::string& text, const std::string& name, int limit) {
-    int depth = 0;
-    bool in_string = false, escaped = false;
-    for (std::size_t i = 0; i < text.size(); ++i) {
-        const char c = text[i];
-        if (in_string) {
-            if (escaped)
-                escaped = false;
-            else if (c == '\\')
-                escaped = true;
-            else if (c == '"')
-                in_string = false;
-        } else if (c == '"') {
-            in_string = true;
-        } else if (c == '[' || c == '{') {
-            if (++depth > limit)
-                throw SceneError(place(name, text, i) + ": JSON nested deeper than " +
-                                 std::to_string(limit) + " levels");
-        } else if (c == ']' || c == '}') {
-            --depth;
-        }
-    }
-}
-
 Scene parse_scene(const std::string& text, const std::string& name) {
     check_json_nesting(text, name, kMaxJsonDepth); // no valid scene nests that far
     json root;
@@ -574,7 +540,7 @@ Scene parse_scene(const std::string& text, const std::string& name) {
         root = json::parse(text);
     } catch (const json::parse_error& e) {
         // nlohmann counts the offending byte from 1.
-        throw SceneError(place(name, text, e.byte > 0 ? e.byte - 1 : 0) +
+        throw SceneError(text_place(name, text, e.byte > 0 ? e.byte - 1 : 0) +
                          ": malformed JSON: " + bare_message(e));
     } catch (const json::exception& e) {
         // A number too large for a double ("1e400") stops parsing without a position: find the
@@ -586,56 +552,10 @@ Scene parse_scene(const std::string& text, const std::string& name) {
             offset = text.find(what.substr(open + 1, close - open - 1));
             if (offset == std::string::npos) offset = 0;
         }
-        throw SceneError(place(name, text, offset) + ": " + what +
+        throw SceneError(text_place(name, text, offset) + ": " + what +
                          " (numbers must be finite doubles)");
     }
     return Loader(name).load(root);
-}
-
-std::string printable(std::string_view text, std::size_t limit) {
-    std::string out;
-    for (std::size_t i = 0; i < text.size(); ++i) {
-        if (i == limit) return out + "…";
-        const auto c = static_cast<unsigned char>(text[i]);
-        if (c >= 0x20 && c < 0x7f) {
-            out += static_cast<char>(c);
-        } else {
-            char escaped[8];
-            std::snprintf(escaped, sizeof escaped, "\\x%02x", c);
-            out += escaped;
-        }
-    }
-    return out;
-}
-
-bool parse_number(std::string_view token, double& value) {
-    if (token.size() > 1 && token[0] == '+') token.remove_prefix(1);
-    const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
-    return error == std::errc() && end == token.data() + token.size() && std::isfinite(value);
-}
-
-std::string read_scene_file(const std::filesystem::path& path, const std::string& kind) {
-    const std::string name = path.string();
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec))
-        throw SceneError(name + ": is a directory, not a " + kind);
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw SceneError(name + ": cannot open " + kind + ": " + std::strerror(errno));
-    const auto size = std::filesystem::file_size(path, ec);
-    const std::string limit = "; the limit is " + std::to_string(kMaxSceneBytes >> 20) + " MiB";
-    if (!ec && size > kMaxSceneBytes)
-        throw SceneError(name + ": " + kind + " is " + std::to_string(size >> 20) + " MiB" + limit);
-    // Read no more than the limit allows: devices and pipes (/dev/zero) have no size to ask.
-    std::string text;
-    if (!ec) text.reserve(size);
-    char chunk[1 << 16];
-    while (in.read(chunk, sizeof chunk) || in.gcount() > 0) {
-        text.append(chunk, static_cast<std::size_t>(in.gcount()));
-        if (text.size() > kMaxSceneBytes)
-            throw SceneError(name + ": " + kind + " is larger than allowed" + limit);
-    }
-    if (in.bad()) throw SceneError(name + ": cannot read " + kind + ": " + std::strerror(errno));
-    return text;
 }
 
 } // namespace glint

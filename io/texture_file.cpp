@@ -1,0 +1,62 @@
+#include "io/texture_file.h"
+
+#include "io/error.h"
+#include "io/read_text.h"
+
+#include <stb_image.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <memory>
+
+namespace glint {
+
+std::optional<TextureImage> decode_texture(const std::string& bytes, const std::string& name,
+                                           std::string& why) {
+    const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
+    const int size = static_cast<int>(std::min<std::size_t>(bytes.size(), INT32_MAX));
+    int width = 0, height = 0, channels = 0;
+    // Only what the design names: stb reads more formats, and a model's texture is PNG or JPEG.
+    const bool png = bytes.size() >= 8 && bytes.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0;
+    const bool jpeg = bytes.size() >= 3 && bytes.compare(0, 3, "\xff\xd8\xff") == 0;
+    if (!png && !jpeg) {
+        why = "not a PNG or JPEG image";
+        return std::nullopt;
+    }
+    if (!stbi_info_from_memory(data, size, &width, &height, &channels)) {
+        why = std::string("cannot be decoded: ") + stbi_failure_reason();
+        return std::nullopt;
+    }
+    if (width <= 0 || height <= 0 ||
+        static_cast<std::size_t>(width) * static_cast<std::size_t>(height) > kMaxTexturePixels) {
+        why = std::to_string(width) + " × " + std::to_string(height) + " pixels, beyond the " +
+              std::to_string(kMaxTexturePixels) + " glint decodes";
+        return std::nullopt;
+    }
+    const std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
+        stbi_load_from_memory(data, size, &width, &height, &channels, 3), stbi_image_free);
+    if (!pixels) {
+        why = std::string("cannot be decoded: ") + stbi_failure_reason();
+        return std::nullopt;
+    }
+    TextureImage image{name, width, height, {}};
+    image.rgb.assign(pixels.get(),
+                     pixels.get() + static_cast<std::size_t>(width) * height * 3);
+    return image;
+}
+
+std::optional<TextureImage> load_texture(const std::filesystem::path& path, const std::string& from,
+                                         std::vector<std::string>& warnings) {
+    std::string why;
+    try {
+        const std::string bytes = read_scene_file(path, "texture");
+        if (auto image = decode_texture(bytes, path.filename().string(), why)) return image;
+        why = path.string() + ": " + why;
+    } catch (const SceneError& e) {
+        why = e.what();
+    }
+    warnings.push_back(from + ": texture not used: " + printable(why));
+    return std::nullopt;
+}
+
+} // namespace glint
