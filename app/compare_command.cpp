@@ -2,8 +2,10 @@
 // ray image as the reference: id agreement, fallbacks, PSNR, maximum error, pixels off by > 1/255.
 #include "app/options.h"
 #include "app/phase_json.h"
+#include "frame/record_json.h"
 
 #include "io/png.h"
+#include "trace/frame_records.h"
 #include "trace/image_metrics.h"
 
 #include <nlohmann/json.hpp>
@@ -128,7 +130,10 @@ void print_comparison(const CompareArgs& args, const Comparison& c) {
 // --json: the same figures, for scripts (bench/crossover.py).
 nlohmann::ordered_json comparison_json(const CompareArgs& args, const Comparison& c) {
     const PhaseTimes &r = c.ray.times, &h = c.hybrid.times;
-    const PrimaryStats& stats = c.hybrid.primary_stats;
+    // The resolve's counters under their field names (trace/frame_records.h), in the "hybrid"
+    // object as render's --stats writes them.
+    nlohmann::ordered_json hybrid = {{"seconds", h.total()}, {"phases", phase_seconds_json(h)}};
+    hybrid.update(record_json(c.hybrid.primary_stats));
     return {
         {"scene", args.scene.scene_path().string()},
         {"width", c.scene.camera.width},
@@ -138,16 +143,10 @@ nlohmann::ordered_json comparison_json(const CompareArgs& args, const Comparison
         {"accel", name_of(c.world.accelerator().kind())},
         {"gl_renderer", c.hybrid.gl_renderer},
         {"ray", {{"seconds", r.total()}, {"phases", phase_seconds_json(r)}}},
-        {"hybrid", {{"seconds", h.total()}, {"phases", phase_seconds_json(h)}}},
+        {"hybrid", hybrid},
         {"primary_ratio", c.primary_ratio},
         {"frame_ratio", c.frame_ratio},
         {"id_agreement", c.agreement},
-        {"fallback_pixels", stats.fallbacks},
-        {"corrected_pixels", stats.corrected},
-        {"edge_pixels", stats.edges},
-        {"checked_pixels", stats.checked},
-        {"candidate_tests", stats.tests},
-        {"traced_pixels", stats.traced},
         {"resolve_ratio", h.primary / r.primary},
         {"proxy_objects", c.hybrid.proxies},
         {"tessellated_objects", c.hybrid.tessellated},

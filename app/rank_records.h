@@ -1,51 +1,15 @@
 // The messages glint's MPI ranks exchange (docs/DISTRIBUTED.md), each a record whose fields are
-// listed once, by name (app/record.h): a frame's counters, each rank's figures, a tradeoff run's
+// listed once, by name (trace/record.h; the tracer's counters in trace/frame_records.h): a frame's counters, each rank's figures, a tradeoff run's
 // figures, and a frame's pixels, layer by layer. tests/record_test.cpp round-trips them all.
 #pragma once
 
-#include "app/record.h"
-
-#include "trace/image_metrics.h"
-#include "trace/primary_hits.h"
-#include "trace/render_result.h"
+#include "trace/frame_records.h"
 
 #include <cstdint>
 #include <optional>
 #include <vector>
 
 namespace glint {
-
-template <> struct RecordFields<RayCounts> {
-    template <class R, class V> static void visit(R& r, V&& v) {
-        v("primary", r.primary), v("shadow", r.shadow), v("reflection", r.reflection);
-        v("transmission", r.transmission);
-    }
-};
-
-template <> struct RecordFields<PrimaryStats> {
-    template <class R, class V> static void visit(R& r, V&& v) {
-        v("exact_intersections", r.exact_intersections), v("fallbacks", r.fallbacks);
-        v("corrected", r.corrected), v("edges", r.edges), v("checked", r.checked);
-        v("tests", r.tests), v("traced", r.traced);
-    }
-};
-
-template <> struct RecordFields<PhaseTimes> {
-    template <class R, class V> static void visit(R& r, V&& v) {
-        v("prepare", r.prepare), v("context", r.context), v("compile", r.compile);
-        v("upload", r.upload), v("raster", r.raster), v("primary", r.primary);
-        v("shading", r.shading), v("overlapped", r.overlapped);
-    }
-};
-
-template <> struct RecordFields<ImageDifference> {
-    template <class R, class V> static void visit(R& r, V&& v) {
-        v("psnr_db", r.psnr_db), v("max_abs_error", r.max_abs_error);
-        v("fraction_over_one", r.fraction_over_one), v("pixels_over_one", r.pixels_over_one);
-        v("fraction_over_two", r.fraction_over_two);
-        v("rmse", r.rmse), v("max_radiance_error", r.max_radiance_error);
-    }
-};
 
 // A frame's counters, summed over ranks (each rank counts its own tiles' rays and resolves).
 struct FrameCounters {

@@ -4,11 +4,13 @@
 #include "app/phase_json.h"
 #include "app/progress.h"
 #include "frame/gl_pass.h"
+#include "frame/record_json.h"
 
 #include "io/exr.h"
 #include "io/png.h"
 #include "io/write_file.h"
 #include "trace/cutoff.h"
+#include "trace/frame_records.h"
 #include "trace/image.h"
 #include "trace/kernel.h"
 #include "trace/stopwatch.h"
@@ -111,11 +113,7 @@ nlohmann::ordered_json stats_json(const RenderReport& r) {
         {"aa_threshold", scene.render.aa_threshold},
         {"packet_levels", scene.render.packet_levels},
         {"seconds", {{"load", r.load_seconds}, {"prepare", r.prepare_seconds}}},
-        {"rays",
-         {{"primary", rays.primary},
-          {"shadow", rays.shadow},
-          {"reflection", rays.reflection},
-          {"transmission", rays.transmission}}},
+        {"rays", record_json(rays)},
         {"cutoff",
          {{"bound_max_255", r.cutoff.max},
           {"pixels_over_1_255", r.cutoff.pixels_over_one},
@@ -150,18 +148,16 @@ nlohmann::ordered_json stats_json(const RenderReport& r) {
             {"gl_renderer", r.frame.gl_renderer},
             {"raster", r.args.frame.raster},
             {"tessellation", r.args.frame.tessellation},
-            {"resolve", r.args.frame.resolve},
-            {"exact_intersections", p.exact_intersections},
-            {"fallbacks", p.fallbacks},
-            {"corrected", p.corrected},
-            {"edges", p.edges},
-            {"checked", p.checked},
-            {"tests", p.tests},
-            {"traced", p.traced},
-            {"proxy_objects", r.frame.proxies},
-            {"tessellated_objects", r.frame.tessellated},
-            {"max_deviation",
-             deviations.empty() ? 0.0f : *std::max_element(deviations.begin(), deviations.end())}};
+            {"resolve", r.args.frame.resolve}};
+        // The resolve's counters under their field names (trace/frame_records.h), as compare's
+        // --json writes them.
+        stats["hybrid"].update(record_json(p));
+        stats["hybrid"].update({{"proxy_objects", r.frame.proxies},
+                                {"tessellated_objects", r.frame.tessellated},
+                                {"max_deviation", deviations.empty() ? 0.0f
+                                                                     : *std::max_element(
+                                                                           deviations.begin(),
+                                                                           deviations.end())}});
     }
     return stats;
 }

@@ -1,6 +1,8 @@
 #include "frame/explain.h"
 
+#include "frame/record_json.h"
 #include "io/error.h"
+#include "trace/frame_records.h"
 #include "trace/shapes/table.h"
 #include "trace/transform.h"
 
@@ -203,12 +205,6 @@ double real(double v) {
 nlohmann::ordered_json json_vec(DVec3 v) {
     return {real(v.x), real(v.y), real(v.z)};
 }
-nlohmann::ordered_json json_counts(const RayCounts& r) {
-    return {{"primary", r.primary},
-            {"shadow", r.shadow},
-            {"reflection", r.reflection},
-            {"transmission", r.transmission}};
-}
 
 } // namespace
 
@@ -347,8 +343,8 @@ std::string explanation_json(const Scene& scene, const World& world, const Pixel
     out["averaged"] = e.averaged;
     out["pixel_colour"] = json_vec(DVec3(e.pixel_colour));
     out["pixel_bytes"] = e.pixel_bytes;
-    out["tree_rays"] = json_counts(e.tree_rays);
-    out["pixel_rays"] = json_counts(e.pixel_rays);
+    out["tree_rays"] = record_json(e.tree_rays);
+    out["pixel_rays"] = record_json(e.pixel_rays);
     return out.dump(2) + "\n";
 }
 

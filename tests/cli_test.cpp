@@ -5,6 +5,7 @@
 #include "test_scenes.h"
 
 #include "io/png.h"
+#include "trace/frame_records.h"
 #include "trace/image.h"
 
 #include <nlohmann/json.hpp>
@@ -48,6 +49,37 @@ TEST(Cli, RenderWritesThePngAndReportsPathTimeAndRayCounts) {
     EXPECT_GT(stats["rays"]["reflection"], 0);
     EXPECT_GT(stats["seconds"]["total"], 0.0);
     EXPECT_TRUE(r.err.empty()) << "no progress output when stderr is not a terminal: " << r.err;
+}
+
+// Counters reach JSON through their field lists (trace/frame_records.h): render's --stats and
+// compare's --json write the resolve's counters under the same names, in their "hybrid" objects,
+// and the same counts for the same frame; the rays under RayCounts' names.
+TEST(Cli, RenderAndCompareWriteTheResolveCountersUnderTheirFieldNames) {
+    const fs::path dir = fresh_dir();
+    const std::string scene = "'" GLINT_SOURCE_DIR "/scenes/default.json' --size 64x48 ";
+    const Outcome render = glint(dir, "render " + scene + "-o a.png --stats s.json");
+    ASSERT_EQ(render.exit_code, 0) << render.err;
+    const Outcome compare = glint(dir, "compare " + scene + "--json c.json");
+    ASSERT_EQ(compare.exit_code, 0) << compare.err;
+    const auto stats = nlohmann::json::parse(slurp(dir / "s.json"));
+    const auto comparison = nlohmann::json::parse(slurp(dir / "c.json"));
+    std::vector<std::string> names;
+    const PrimaryStats resolve;
+    for_each_field(resolve, [&](const std::string& name, auto) { names.push_back(name); });
+    ASSERT_EQ(names.size(), 7u);
+    for (const std::string& name : names) {
+        ASSERT_TRUE(stats["hybrid"].contains(name)) << name;
+        ASSERT_TRUE(comparison["hybrid"].contains(name)) << name;
+        EXPECT_EQ(stats["hybrid"][name], comparison["hybrid"][name]) << name;
+    }
+    EXPECT_GT(stats["hybrid"]["exact_intersections"], 0);
+    for (const char* old : {"fallback_pixels", "corrected_pixels", "edge_pixels", "checked_pixels",
+                            "candidate_tests", "traced_pixels"})
+        EXPECT_FALSE(comparison.contains(old)) << old << ": a second name for a counter";
+    const RayCounts rays;
+    for_each_field(rays, [&](const std::string& name, auto) {
+        EXPECT_TRUE(stats["rays"].contains(name)) << name;
+    });
 }
 
 // GLINT_KERNEL chooses the SIMD kernel (trace/kernel.h): --stats and `glint info` name the one

@@ -1,6 +1,7 @@
-// What crosses between MPI ranks, as records with named fields. Each record lists its fields once,
-// in RecordFields<T>::visit (name, member); pack and unpack both walk that list, so a field added
-// to it is sent and read back in its place and no other field moves. tests/record_test.cpp
+// Records with named fields: what crosses between MPI ranks, and the counters every JSON output
+// writes. Each record lists its fields once, in RecordFields<T>::visit (name, member); pack and
+// unpack both walk that list, so a field added to it is sent and read back in its place and no
+// other field moves, and frame/record_json.h writes it under the same names. tests/record_test.cpp
 // round-trips every record field by field, and checks that each plain record's list covers its
 // struct. Fields are arithmetic values, std::optional of one, or records themselves (visited
 // with their name as a prefix).
