@@ -157,7 +157,7 @@ BENCHMARK(Frame)
 // (docs/PERFORMANCE.md, "Against Embree"). Two scenes:
 //  - Terrain: a fractal-ish height field of 2·707² ≈ 10⁶ triangles, one mesh, seen from above;
 //  - Balls: SPD's balls-4 (7,381 spheres and a floor polygon), where the SPD folder is beside
-//    the checkout (../shared/scenes/spd), as glint's spheres against Embree's sphere geometry.
+//    the checkout (scenes/spd), as glint's spheres against Embree's sphere geometry.
 // Rays, all camera-relative (the World's coordinates; Embree gets the geometry moved likewise):
 //  - Closest: single rays from the camera towards random points (incoherent in order);
 //  - Packets: a 256×256 camera image in 4×4 blocks (glint's packet size; Embree's
@@ -260,7 +260,7 @@ const PeerScene& terrain() {
 
 const PeerScene* balls() {
     static const std::unique_ptr<PeerScene> peer = []() -> std::unique_ptr<PeerScene> {
-        const std::filesystem::path path = GLINT_SOURCE_DIR "/../shared/scenes/spd/balls-4.nff";
+        const std::filesystem::path path = GLINT_SOURCE_DIR "/scenes/spd/balls-4.nff";
         if (!std::filesystem::exists(path)) return nullptr;
         static const Scene scene = load_scene(path);
         static const World world(scene);
@@ -296,7 +296,7 @@ void label(benchmark::State& state, const PeerScene& peer, std::int64_t rays) {
 // The rays of `rays` one at a time (closest hit).
 void glint_single(benchmark::State& state, std::vector<Ray> PeerScene::*rays) {
     const PeerScene* peer = peer_of(state);
-    if (!peer) return state.SkipWithError("no ../shared/scenes/spd beside the checkout");
+    if (!peer) return state.SkipWithError("no scenes/spd in the checkout");
     const std::vector<Ray>& given = peer->*rays;
     std::atomic<std::int64_t> hits = 0;
     for (auto _ : state)
@@ -320,7 +320,7 @@ void GlintCameraSingle(benchmark::State& state) {
 
 void GlintPackets(benchmark::State& state) {
     const PeerScene* peer = peer_of(state);
-    if (!peer) return state.SkipWithError("no ../shared/scenes/spd beside the checkout");
+    if (!peer) return state.SkipWithError("no scenes/spd in the checkout");
     std::atomic<std::int64_t> hits = 0;
     const std::size_t packets = peer->camera.size() / kMaxPacket;
     for (auto _ : state)
@@ -339,7 +339,7 @@ void GlintPackets(benchmark::State& state) {
 
 void GlintShadow(benchmark::State& state) {
     const PeerScene* peer = peer_of(state);
-    if (!peer) return state.SkipWithError("no ../shared/scenes/spd beside the checkout");
+    if (!peer) return state.SkipWithError("no scenes/spd in the checkout");
     std::atomic<std::int64_t> blocked = 0;
     for (auto _ : state)
         over_rays(peer->shadow.size(), state.range(1), [&](std::size_t b, std::size_t e) {
@@ -355,7 +355,7 @@ void GlintShadow(benchmark::State& state) {
 
 void GlintShadowPackets(benchmark::State& state) {
     const PeerScene* peer = peer_of(state);
-    if (!peer) return state.SkipWithError("no ../shared/scenes/spd beside the checkout");
+    if (!peer) return state.SkipWithError("no scenes/spd in the checkout");
     std::atomic<std::int64_t> blocked = 0;
     const std::size_t n = peer->shadow.size();
     for (auto _ : state)
@@ -410,9 +410,9 @@ const ShadingScene* shading_scene(std::int64_t which) {
     static std::map<std::int64_t, std::unique_ptr<ShadingScene>> scenes;
     auto& out = scenes[which];
     if (out) return out.get();
-    const char* const files[] = {"../shared/scenes/spd/balls-4.nff",
-                                 "../shared/scenes/spd/balls-4.nff",
-                                 "../shared/scenes/spd/gears-4.nff", "scenes/mirrors.json"};
+    const char* const files[] = {"scenes/spd/balls-4.nff",
+                                 "scenes/spd/balls-4.nff",
+                                 "scenes/spd/gears-4.nff", "scenes/mirrors.json"};
     const char* const names[] = {"balls-4", "balls-4, mirror floor", "gears-4", "mirrors"};
     const std::filesystem::path path = std::string(GLINT_SOURCE_DIR "/") + files[which];
     if (!std::filesystem::exists(path)) return nullptr;
@@ -441,7 +441,7 @@ const ShadingScene* shading_scene(std::int64_t which) {
 
 void TileShading(benchmark::State& state) {
     const ShadingScene* scene = shading_scene(state.range(0));
-    if (!scene) return state.SkipWithError("no ../shared/scenes/spd beside the checkout");
+    if (!scene) return state.SkipWithError("no scenes/spd in the checkout");
     const int levels = static_cast<int>(state.range(1));
     TileLighting lighting;
     std::int64_t pixels = 0;
@@ -553,7 +553,7 @@ void set_ray(RTCRay& out, const Ray& r, float t_far) {
 // The rays of `rays` one at a time with rtcIntersect1.
 void embree_single(benchmark::State& state, std::vector<Ray> PeerScene::*rays) {
     const PeerScene* peer = peer_of(state);
-    if (!peer) return state.SkipWithError("no ../shared/scenes/spd beside the checkout");
+    if (!peer) return state.SkipWithError("no scenes/spd in the checkout");
     const std::vector<Ray>& given = peer->*rays;
     const RTCScene scene = embree_of(state).scene();
     std::atomic<std::int64_t> hits = 0;
@@ -588,7 +588,7 @@ void EmbreeCameraIntersect1(benchmark::State& state) {
 template <int kWidth, class RayHitN, class Intersect>
 void embree_packets(benchmark::State& state, Intersect intersect) {
     const PeerScene* peer = peer_of(state);
-    if (!peer) return state.SkipWithError("no ../shared/scenes/spd beside the checkout");
+    if (!peer) return state.SkipWithError("no scenes/spd in the checkout");
     const RTCScene scene = embree_of(state).scene();
     std::atomic<std::int64_t> hits = 0;
     const std::size_t packets = peer->camera.size() / kWidth;
@@ -634,7 +634,7 @@ void EmbreeIntersect16(benchmark::State& state) {
 // add work. The blocked counts show how closely the answers agree.
 void EmbreeOccluded1(benchmark::State& state) {
     const PeerScene* peer = peer_of(state);
-    if (!peer) return state.SkipWithError("no ../shared/scenes/spd beside the checkout");
+    if (!peer) return state.SkipWithError("no scenes/spd in the checkout");
     const RTCScene scene = embree_of(state).scene();
     std::atomic<std::int64_t> blocked = 0;
     for (auto _ : state)

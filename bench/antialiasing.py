@@ -13,7 +13,7 @@ With --pictures DIR it renders scenes/default.json at 800x600 instead, with one 
 4x4 and uniform 4x4, and writes a crop of an edge from each (enlarged 4x, nearest neighbour),
 the adaptive render's map of refined pixels (--aa-map), and that map's crop.
 
-Default scenes: every shipped scene and SPD's balls-4, lattice-4 and tree-11 (../shared/scenes/spd).
+Default scenes: every shipped scene and SPD's balls-4, lattice-4 and tree-11 (scenes/spd).
 Needs a built glint (`./glint build`).
 """
 import argparse
@@ -28,7 +28,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from povray_compare import read_png, write_png  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SPD = os.path.join(ROOT, "..", "shared", "scenes", "spd")
+SPD = os.path.join(ROOT, "scenes", "spd")
 
 
 def default_scenes():

@@ -7,7 +7,7 @@ modes at the same size, without antialiasing, with the same number of threads, a
 times, their ratios and the image difference. POV-Ray's start-up (everything but parsing,
 bounding and tracing) is reported apart, as is glint's (load, GL context, shaders).
 
-    python3 bench/povray_compare.py ../shared/scenes/spd/balls-4.nff --size 1920x1080 --threads 2
+    python3 bench/povray_compare.py scenes/spd/balls-4.nff --size 1920x1080 --threads 2
 
 Needs povray (`apt-get install povray`) and a built glint (`./glint build`). Runs are
 repeated (--runs, default 3) alternately and the medians reported: the machine is shared.
