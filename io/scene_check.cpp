@@ -153,6 +153,13 @@ class Check {
 
 void check_scene(const Scene& scene, const ScenePlaces& places) {
     const Check check(places);
+    // The geometry first: a model's framing camera and default lights are made from its placed
+    // meshes, so a bad vertex is blamed on its own place (a glTF accessor and element), not on
+    // the camera or light derived from it.
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m)
+        check.mesh("meshes/" + std::to_string(m), scene.meshes[m]);
+    for (std::size_t o = 0; o < scene.objects.size(); ++o)
+        check.object("objects/" + std::to_string(o), scene.objects[o], scene);
     check.camera(scene.camera);
     check.colour("background", scene.background);
     check.colour("ambient", scene.ambient);
@@ -167,10 +174,6 @@ void check_scene(const Scene& scene, const ScenePlaces& places) {
     for (std::size_t k = 0; k < scene.materials.size(); ++k)
         check.material("materials/" + std::to_string(k), scene.materials[k], scene);
     check.render(scene.render);
-    for (std::size_t m = 0; m < scene.meshes.size(); ++m)
-        check.mesh("meshes/" + std::to_string(m), scene.meshes[m]);
-    for (std::size_t o = 0; o < scene.objects.size(); ++o)
-        check.object("objects/" + std::to_string(o), scene.objects[o], scene);
 }
 
 std::vector<std::string> path_parts(const std::string& path) {

@@ -208,6 +208,18 @@ std::vector<BadGltf> bad_gltf() {
              return d.dump();
          },
          "bad.gltf: /accessors/0, element 1: coordinates must be within ±1e15"},
+        // The file has no camera, so the framing camera is made from the positions: the bad one
+        // is still blamed on its accessor and element, not on the camera framed around it.
+        {"infinite position",
+         [](GltfBuilder& b) {
+             std::string bin = b.bin();
+             const std::uint32_t infinity = 0x7f800000;
+             std::memcpy(&bin[12], &infinity, 4); // vertex 1's x
+             json d = json::parse(b.gltf());
+             d["buffers"][0]["uri"] = "data:application/octet-stream;base64," + GltfBuilder::base64(bin);
+             return d.dump();
+         },
+         "bad.gltf: /accessors/0, element 1: coordinates must be within ±1e15"},
         {"node cycle",
          [](GltfBuilder& b) {
              b.node({{"children", {0}}}, false);
