@@ -516,7 +516,7 @@ class Reader {
             for (std::size_t i = 0; i < child.size(); ++i)
                 if (!child[i]) roots.push_back(static_cast<int>(i));
             roots_at = "/nodes";
-            scene_.notes.push_back(name_ + ": no scene given: every root node is drawn");
+            scene_.notes.push_back("no scene given: every root node is drawn");
         }
         enum : std::uint8_t { unseen, open, done };
         std::vector<std::uint8_t> state(m_.nodes.size(), unseen);

@@ -502,7 +502,8 @@ class Loader {
             scene.meshes.push_back(std::move(part.mesh));
             mesh_places_.push_back({node.path, false});
         }
-        scene.notes.insert(scene.notes.end(), model.notes.begin(), model.notes.end());
+        // A mesh file's notes name it: the scene's own path comes before them when printed.
+        for (const std::string& note : model.notes) scene.notes.push_back(given + ": " + note);
         scene.warnings.insert(scene.warnings.end(), model.warnings.begin(), model.warnings.end());
         return obj_cache_.emplace(key, std::move(parts)).first->second;
     }

@@ -310,7 +310,7 @@ ObjModel parse_obj(const std::string& text, const std::string& name,
         }
     }
     if (checker.lines_and_points > 0)
-        model.notes.push_back(name + ": " + std::to_string(checker.lines_and_points) +
+        model.notes.push_back(std::to_string(checker.lines_and_points) +
                               " line and point statements (l, p) ignored: glint draws surfaces");
 
     tinyobj::ObjReaderConfig config;
@@ -387,7 +387,7 @@ ObjModel parse_obj(const std::string& text, const std::string& name,
         }
     }
     if (degenerate > 0)
-        model.notes.push_back(name + ": " + std::to_string(degenerate) +
+        model.notes.push_back(std::to_string(degenerate) +
                               " face(s) of zero area left out");
     for (auto& [id, b] : parts) {
         if (b.part.mesh.triangles.empty()) continue;

@@ -156,7 +156,8 @@ struct Scene {
     std::vector<TriangleMesh> meshes;
     std::vector<Texture> textures;
     RenderSettings render;
-    // What the loader left out or changed, for the user to read (NFF's transmission, ...).
+    // What the loader left out or changed, for the user to read (NFF's transmission, ...); each
+    // is printed after the scene's path, so a note names only another file it comes from.
     std::vector<std::string> notes;
     // What a model file asked for that glint could not give it (a missing texture or material
     // library): the model renders without it.
