@@ -33,7 +33,10 @@ struct Cli {
     std::vector<Command> commands;
 
     Cli();
-    // The chosen subcommand after a successful app.parse().
+    // app.parse, after refusing a first word that is no command (a typo: `glint rendr`) with the
+    // nearest command's name; throws CLI::ParseError (exit code 2) as app.parse does.
+    void parse(int argc, const char* const* argv);
+    // The chosen subcommand after a successful parse().
     const Command& chosen() const;
 };
 

@@ -7,6 +7,7 @@
 #include "trace/image.h"
 
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 
 namespace glint {
@@ -38,17 +39,26 @@ int whole_number(const std::string& text, const std::string& what) {
     return value;
 }
 
+// Whether a positional is a number ("12", "1.5", "-3") rather than a scene's path: given X Y
+// alone, the scene's slot takes X, and X is then judged as a pixel's column.
+bool looks_like_a_number(const std::string& text) {
+    if (text.empty()) return false;
+    char* end = nullptr;
+    std::strtod(text.c_str(), &end);
+    return end == text.c_str() + text.size();
+}
+
 // Every check on the input, before anything is traced or written.
 ExplainJob prepare(ExplainArgs& args) {
     // Positionals fill in order: given X Y alone, the scene's slot took X.
-    if (args.pixel.size() == 1 && !args.scene.scene.empty() &&
-        args.scene.scene.find_first_not_of("0123456789-") == std::string::npos) {
+    if (args.pixel.size() == 1 && looks_like_a_number(args.scene.scene)) {
         args.pixel.insert(args.pixel.begin(), args.scene.scene);
         args.scene.scene.clear();
     }
     if (args.pixel.size() != 2)
         throw UsageError("explain needs the pixel: glint explain [SCENE] X Y (column, row)");
     if (!args.json.empty()) check_output(args.json, "--json");
+    args.frame.settings(); // refuses settings that contradict each other (--aa-sample-ids)
     ExplainJob job;
     job.x = whole_number(args.pixel[0], "X");
     job.y = whole_number(args.pixel[1], "Y");
@@ -109,6 +119,16 @@ Command add_explain_command(CLI::App& app) {
                     "A,B: which sample of the pixel's NxN grid to explain; default the centre "
                     "one (N/2, N/2)");
     cmd->add_option("--json", args->json, "Also write the explanation as JSON (docs/EXPLAIN.md)");
+    // render's outputs: explain writes none of them.
+    refuse_option(*cmd, "-o,--output",
+                  "explain writes no image: it prints the pixel's ray tree (--json writes it as "
+                  "JSON); `glint render -o` writes the image");
+    refuse_option(*cmd, "--stats",
+                  "render's: explain prints the pixel's rays itself (and --json writes them)");
+    refuse_option(*cmd, "--aov",
+                  "render's (an EXR's channels): explain prints the pixel's primary hit itself");
+    refuse_option(*cmd, "--aa-map",
+                  "render's: explain says whether its pixel took the sample grid");
     return {cmd, [args] { prepare(*args); },
             [args] { return guarded([&] { return run_explain(*args); }); }};
 }

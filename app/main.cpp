@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
     glint::Cli cli;
     int code = 0;
     try {
-        cli.app.parse(argc, argv);
+        cli.parse(argc, argv);
         code = kernel_choice_stands() ? run_command(cli) : 2;
     } catch (const CLI::ParseError& e) {
         if (e.get_exit_code() == 0) {

@@ -126,6 +126,9 @@ FrameSettings FrameOptions::settings() const {
     s.resolve = *from_name<Resolve>(resolve);
     s.threads = threads;
     s.aa_sample_ids = aa_sample_ids;
+    if (s.aa_sample_ids && s.mode == Mode::ray)
+        throw UsageError("--aa-sample-ids refines where the item buffer's samples name several "
+                         "objects: hybrid mode only (--mode ray draws no item buffer)");
     return s;
 }
 
@@ -135,6 +138,18 @@ std::string FrameOptions::describe() const {
     return std::string(name_of(s.mode)) + " (" + gl + ", " + raster +
            (s.raster != RasterMode::proxy ? " tess " + std::to_string(tessellation) : "") + ", " +
            resolve + ")";
+}
+
+void refuse_option(CLI::App& cmd, const std::string& name, const std::string& why,
+                   bool takes_value) {
+    const std::string shown = name.substr(0, name.find(','));
+    const auto refuse = [shown, why] { throw CLI::ValidationError(shown, why); };
+    CLI::Option* option =
+        takes_value
+            ? cmd.add_option_function<std::vector<std::string>>( // given any number of times
+                  name, [refuse](const std::vector<std::string>&) { refuse(); })
+            : cmd.add_flag_callback(name, refuse);
+    option->group(""); // not in --help: the command does not take it
 }
 
 std::pair<int, int> parse_size(const std::string& text, const std::string& flag) {
@@ -176,16 +191,10 @@ void create_output_directory(const fs::path& output) {
 
 namespace {
 
-// Bytes one frame of width × height uses at its peak, roughly.
+// Bytes one frame of width × height uses at its peak, roughly (options.h's constants).
 std::uint64_t frame_memory_bytes(int width, int height, Mode mode) {
-    // Per pixel, from what a frame holds: primary hits (20 B with their barycentrics), the ids
-    // and cut-off weights (8 B), the float image (12 B; 24 B with a sample grid's clamped mean)
-    // and the PNG's bytes (3 B) and their encoding (~3 B); hybrid adds the read-back ids and
-    // depths (8 B) and the GL side: llvmpipe's id and depth attachments and the pixel-pack
-    // buffer. Peak resident memory measured at 4000×3000 minus that at 8×6 (docs/SCENES.md,
-    // "Limits"), before the float image: 31 B a pixel in ray mode, 39 B in hybrid mode; the 12 B
-    // it adds are added to each, and the margin above covers allocator slack and the AOVs.
-    const std::uint64_t per_pixel = mode == Mode::hybrid ? 76 : 52;
+    const std::uint64_t per_pixel =
+        mode == Mode::hybrid ? kFrameBytesPerPixelHybrid : kFrameBytesPerPixelRay;
     return static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) * per_pixel;
 }
 
@@ -223,10 +232,9 @@ void check_frame_memory(const Scene& scene, Mode mode, int frames) {
                          std::to_string(kMaxItemBufferSide) +
                          " a side): use fewer samples, a smaller --size, or --mode ray");
     std::uint64_t needed = frames * frame_memory_bytes(camera.width, camera.height, mode);
-    // The sample grid's item buffer: its ids and depths read back (8 B a sample), llvmpipe's id
-    // and depth attachments (8 B) and the pixel-pack buffer and depth read-back (8 B).
     if (sample_grid)
-        needed += std::uint64_t(frames) * camera.width * camera.height * std::uint64_t(n * n) * 24;
+        needed += std::uint64_t(frames) * camera.width * camera.height * std::uint64_t(n * n) *
+                  kSampleGridBytesPerSample;
     const std::optional<std::uint64_t> available = available_memory_bytes();
     if (available && needed > *available)
         throw UsageError("a " + size + " image" + (sample_grid ? " with " + grid : "") +

@@ -7,6 +7,7 @@
 
 #include "io/model_scene.h"
 
+#include <cstdint>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -61,6 +62,12 @@ struct FrameOptions {
     std::string describe() const;
 };
 
+// An option that another command takes and `cmd` does not (explain's -o, preview's --gl): the
+// parser accepts it only to refuse it by name, saying `why`, instead of letting its value fall
+// into a positional argument with a vaguer message. `takes_value`: an option, else a flag.
+void refuse_option(CLI::App& cmd, const std::string& name, const std::string& why,
+                   bool takes_value = true);
+
 // WIDTHxHEIGHT, each side 1 to kMaxImageSide; UsageError naming `flag` otherwise.
 std::pair<int, int> parse_size(const std::string& text, const std::string& flag);
 
@@ -70,6 +77,23 @@ void check_output(const std::filesystem::path& path, const std::string& flag);
 
 // Creates the directory that the default output goes to (out/); UsageError when it cannot.
 void create_output_directory(const std::filesystem::path& output);
+
+// What check_frame_memory counts, the formula docs/SCENES.md ("Limits") quotes and
+// Cli.TheMemoryRuleIsTheOneScenesMdQuotes holds it to: width × height × these bytes a pixel, by
+// mode, times the frames alive at once; and in hybrid mode with an N×N grid, width × height × N²
+// × kSampleGridBytesPerSample more.
+// Per pixel, from what a frame holds: primary hits (20 B with their barycentrics), the ids and
+// cut-off weights (8 B), the float image (12 B; 24 B with a sample grid's clamped mean) and the
+// PNG's bytes (3 B) and their encoding (~3 B); hybrid adds the read-back ids and depths (8 B)
+// and the GL side: llvmpipe's id and depth attachments and the pixel-pack buffer. Peak resident
+// memory measured at 4000×3000 minus that at 8×6 (docs/SCENES.md, "Limits"), before the float
+// image: 31 B a pixel in ray mode, 39 B in hybrid mode; the 12 B it adds are added to each, and
+// the margin above covers allocator slack and the AOVs.
+inline constexpr std::uint64_t kFrameBytesPerPixelRay = 52;
+inline constexpr std::uint64_t kFrameBytesPerPixelHybrid = 76;
+// The sample grid's item buffer: its ids and depths read back (8 B a sample), llvmpipe's id and
+// depth attachments (8 B) and the pixel-pack buffer and depth read-back (8 B).
+inline constexpr std::uint64_t kSampleGridBytesPerSample = 24;
 
 // Refuses, before anything is allocated, a frame that would not fit in the memory this process
 // may use (MemAvailable, or a lower address-space limit): UsageError naming the size. Counts

@@ -1,6 +1,7 @@
 // `glint preview`: the scene in a window (preview/preview.h), or scripted for tests and docs.
 #include "app/options.h"
 
+#include "io/extension.h"
 #include "preview/preview.h"
 #include "preview/window.h"
 
@@ -31,7 +32,7 @@ PreviewOptions prepare(const PreviewArgs& args) {
     options.keys = args.keys;
     options.screenshot = args.screenshot;
     if (!options.screenshot.empty()) {
-        if (options.screenshot.extension() != ".png")
+        if (extension_of(options.screenshot) != ".png")
             throw UsageError("--screenshot " + args.screenshot + ": glint writes PNG files (.png)");
         check_output(options.screenshot, "--screenshot");
     }
@@ -103,6 +104,9 @@ Command add_preview_command(CLI::App& app) {
         "preview", "Open a scene in a window: fly the camera and watch the trace refine (H: keys)");
     args->scene.add_to(*cmd);
     args->frame.add_to(*cmd, true, false);
+    refuse_option(*cmd, "--gl",
+                  "the preview draws with its window's own GL context (GLFW); --gl chooses the "
+                  "headless back end of render, explain, compare and tradeoff");
     cmd->add_option("--frames", args->frames,
                     "Scripted: draw at least N frames, wait until the trace has refined, then exit")
         ->check(CLI::Range(0, 1000000));

@@ -7,6 +7,7 @@
 #include "frame/record_json.h"
 
 #include "io/exr.h"
+#include "io/extension.h"
 #include "io/png.h"
 #include "io/write_file.h"
 #include "trace/cutoff.h"
@@ -50,7 +51,7 @@ struct RenderJob {
 RenderJob prepare(const RenderArgs& args) {
     RenderJob job{args.scene.scene_path(), args.output, {}, {}};
     if (job.output.empty()) job.output = fs::path("out") / job.scene_path.stem().concat(".png");
-    const fs::path format = job.output.extension();
+    const std::string format = extension_of(job.output); // x.PNG is a PNG, as scenes' names go
     if (format != ".png" && format != ".exr")
         throw UsageError("-o " + job.output.string() +
                          ": glint writes PNG (.png) and OpenEXR (.exr) files");
@@ -64,7 +65,7 @@ RenderJob prepare(const RenderArgs& args) {
         if (std::find(job.aovs.begin(), job.aovs.end(), *aov) == job.aovs.end())
             job.aovs.push_back(*aov);
     }
-    if (!args.aa_map.empty() && fs::path(args.aa_map).extension() != ".png")
+    if (!args.aa_map.empty() && extension_of(args.aa_map) != ".png")
         throw UsageError("--aa-map " + args.aa_map + ": glint writes PNG files (.png)");
     if (rank() == 0) {
         if (args.output.empty()) create_output_directory(job.output);
@@ -219,7 +220,7 @@ bool wants(const std::vector<Aov>& aovs, Aov aov) {
 
 // The frame as the output's format: the PNG's bytes, or the EXR's float image with its AOVs.
 void write_image(const RenderJob& job, const RenderResult& result) {
-    if (job.output.extension() == ".png") return write_png(job.output, result.bytes());
+    if (extension_of(job.output) == ".png") return write_png(job.output, result.bytes());
     const std::vector<float> cutoff =
         wants(job.aovs, Aov::cutoff) ? cutoff_radiance(job.scene, result) : std::vector<float>();
     ExrLayers layers{&result.radiance};
@@ -315,7 +316,8 @@ int run_render(const RenderArgs& args) {
 
 Command add_render_command(CLI::App& app) {
     auto args = std::make_shared<RenderArgs>();
-    CLI::App* cmd = app.add_subcommand("render", "Render a scene to a PNG file");
+    CLI::App* cmd = app.add_subcommand(
+        "render", "Render a scene to an image: PNG (8-bit) or OpenEXR (linear float)");
     args->scene.add_to(*cmd);
     cmd->add_option("-o,--output", args->output,
                     "Output image: .png (8-bit, clamped) or .exr (linear float, unclamped); "

@@ -181,7 +181,7 @@ std::string markdown(const std::vector<SceneResult>& results, const TradeoffArgs
           "llvmpipe, reported in the CSV; the meshes and their BVHs, prepared once per scene): "
           "preparing the world (transforms, the top-level acceleration structure), tessellation "
           "upload, item buffer, primary visibility, shading. Each knob "
-          "is varied alone from the default setting (hybrid, mesh, tessellation 32, exact "
+          "is varied alone from the default setting (hybrid, auto raster, tessellation 32, exact "
           "resolve, the scene's depth and cut-off, automatic structure, one sample a pixel: the "
           "antialiasing knobs have their own section per scene); the trace-only knobs in "
           "ray mode. Smaller sizes are enlarged by pixel replication before comparing. "

@@ -52,7 +52,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
     glint::Cli cli;
     try {
-        cli.app.parse(static_cast<int>(argv.size()), argv.data());
+        cli.parse(static_cast<int>(argv.size()), argv.data());
     } catch (const CLI::ParseError&) {
         return 0; // CLI11's own message, exit 2 (or 0 for --help, --version)
     }

@@ -2,21 +2,20 @@
 // the loaders, so that none of them depends on another through it.
 #include "io/load_scene.h"
 
+#include "io/extension.h"
 #include "io/gltf_loader.h"
 #include "io/json_loader.h"
 #include "io/model_scene.h"
 #include "io/nff_loader.h"
 #include "io/read_text.h"
 
-#include <cctype>
 #include <tuple>
 
 namespace glint {
 
 Scene load_scene(const std::filesystem::path& path, const ModelOptions& options) {
     const std::string name = path.string();
-    std::string extension = path.extension().string();
-    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const std::string extension = extension_of(path);
     if (extension == ".gltf" || extension == ".glb") return load_gltf(path, options);
     if (options.camera)
         throw SceneError(name + ": --camera picks a glTF file's camera; this file has none");

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <sys/wait.h>
 
@@ -49,6 +50,49 @@ TEST(Cli, RenderWritesThePngAndReportsPathTimeAndRayCounts) {
     EXPECT_GT(stats["rays"]["reflection"], 0);
     EXPECT_GT(stats["seconds"]["total"], 0.0);
     EXPECT_TRUE(r.err.empty()) << "no progress output when stderr is not a terminal: " << r.err;
+}
+
+// Output names are read by their extension in any case, as scene names are: x.PNG is a PNG.
+TEST(Cli, AnOutputExtensionInCapitalsIsItsFormat) {
+    const fs::path dir = fresh_dir();
+    const Outcome r = glint(dir, "render --size 16x12 --mode ray -o x.PNG");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(read_png(dir / "x.PNG").width, 16);
+}
+
+// A note about a model given as the scene names the file once (the note itself does not: the
+// scene's path is printed before it); a note about a JSON scene's mesh names the mesh file.
+TEST(Cli, AModelsNoteNamesItsFileOnce) {
+    const fs::path dir = fresh_dir();
+    write(dir / "m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nl 1 2\n");
+    Outcome r = glint(dir, "render m.obj --size 16x12 --mode ray -o a.png");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("glint: note: m.obj: 1 line and point statements (l, p) ignored"),
+              std::string::npos)
+        << r.err;
+    EXPECT_EQ(r.err.find("m.obj: m.obj"), std::string::npos) << r.err;
+    write(dir / "s.json", R"({"objects": [{"shape": "mesh", "file": "m.obj"}]})");
+    r = glint(dir, "render s.json --size 16x12 --mode ray -o a.png");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("glint: note: s.json: m.obj: 1 line and point statements"),
+              std::string::npos)
+        << r.err;
+}
+
+// explain takes the scene's and the frame's options, not render's outputs: each is refused by
+// its name (BadRunTest has -o), before anything is traced or written.
+TEST(Cli, ExplainRefusesRendersOutputsByName) {
+    const fs::path dir = fresh_dir();
+    for (const auto& [args, message] : std::initializer_list<std::pair<std::string, std::string>>{
+             {"--stats s.json", "glint: error: --stats: render's"},
+             {"--aov depth", "glint: error: --aov: render's"},
+             {"--aa-map m.png", "glint: error: --aa-map: render's"}}) {
+        const Outcome r = glint(dir, "explain " + args + " 10 10 --json e.json");
+        EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+        EXPECT_NE(r.err.find(message), std::string::npos) << args << ": " << r.err;
+        for (const char* file : {"e.json", "s.json", "m.png"})
+            EXPECT_FALSE(fs::exists(dir / file)) << args << ": wrote " << file;
+    }
 }
 
 // Counters reach JSON through their field lists (trace/frame_records.h): render's --stats and
@@ -218,6 +262,10 @@ TEST(Cli, TradeoffWritesTheCsvAPlotPerSceneAndTheSummary) {
     EXPECT_NE(summary.find("](./default-antialiasing.svg)"), std::string::npos) << summary;
     EXPECT_NE(summary.find("| hybrid auto tess 32 4x4 adaptive 0.02 |"), std::string::npos)
         << summary;
+    // The default setting it names is the one the sweep starts from: auto raster, not mesh.
+    EXPECT_NE(summary.find("from the default setting (hybrid, auto raster, tessellation 32,"),
+              std::string::npos)
+        << summary;
     EXPECT_GT(fs::file_size(dir / "sweep" / "default-antialiasing.svg"), 0u);
 }
 
@@ -340,7 +388,13 @@ INSTANTIATE_TEST_SUITE_P(EveryClass, BadRunTest, ::testing::Values(
     BadRun{"sample grid beyond GL", "", "render --size 3840x2160 --samples 16", "a 3840x2160 image with 16x16 samples needs an item buffer of 61440x34560, beyond the largest GL draws (16384 a side): use fewer samples, a smaller --size, or --mode ray"},
     BadRun{"adaptive map without adaptive", "", "render --samples 1 --aa-map map.png", "--aa-map map.png: maps adaptive antialiasing; give --aa adaptive and --samples N > 1"},
     BadRun{"tradeoff: samples beyond 16", "", "tradeoff --samples 20", "--samples"},
-    BadRun{"stats into a missing directory", "", "render --stats no/dir/s.json", "--stats no/dir/s.json: directory no/dir does not exist"}
+    BadRun{"stats into a missing directory", "", "render --stats no/dir/s.json", "--stats no/dir/s.json: directory no/dir does not exist"},
+    // A command or flag that does not apply is refused by name, not left to a vaguer message.
+    BadRun{"a command misspelt", "", "rendr", "glint: error: no command 'rendr'; did you mean 'render'? (glint's commands: render, explain,"},
+    BadRun{"no such command", "", "paint scene.json", "glint: error: no command 'paint' (glint's commands: render,"},
+    BadRun{"explain: render's -o", "", "explain -o x.png 10 10", "glint: error: -o: explain writes no image"},
+    BadRun{"sample ids in ray mode", "", "render --aa-sample-ids --mode ray", "glint: error: --aa-sample-ids refines where the item buffer's samples name several objects: hybrid mode only"},
+    BadRun{"preview: --gl", "", "preview --gl egl", "glint: error: --gl: the preview draws with its window's own GL context"}
 ), [](const auto& info) { return testing::test_name(info.param.what); });
 // clang-format on
 
@@ -394,6 +448,17 @@ TEST(Cli, ExplainRefusesAPixelOrSampleOutsideTheImageAndItsGrid) {
         const Outcome r = glint(dir, "explain " + scene + args + (json ? "" : " --json e.json"));
         EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
         EXPECT_NE(r.err.find(message), std::string::npos) << args << ": " << r.err;
+        EXPECT_FALSE(fs::exists(dir / "e.json")) << args;
+    }
+    // Without a scene, a number that is not whole is still judged as the pixel's X, with the
+    // same message as with a scene.
+    for (const char* args : {"1.5 10", "1e3 10"}) {
+        const Outcome r = glint(dir, std::string("explain ") + args + " --json e.json");
+        EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+        EXPECT_NE(r.err.find("glint: error: X '" + std::string(args).substr(0, std::string(args).find(' ')) +
+                             "' is not a whole number"),
+                  std::string::npos)
+            << args << ": " << r.err;
         EXPECT_FALSE(fs::exists(dir / "e.json")) << args;
     }
 }
@@ -468,6 +533,45 @@ TEST(Cli, AnImageLargerThanMemoryIsRefusedBeforeAllocating) {
                   std::string::npos)
             << r.err;
         EXPECT_FALSE(fs::exists(dir / "a.png"));
+    }
+#endif
+}
+
+// The memory rule is one formula (app/options.h), which docs/SCENES.md quotes: the refusal's
+// figures are the ones the doc's bytes a pixel and a sample give, and so is its example.
+TEST(Cli, TheMemoryRuleIsTheOneScenesMdQuotes) {
+#ifdef GLINT_SANITIZE
+    GTEST_SKIP() << "AddressSanitizer reserves terabytes of address space: no ulimit -v under it";
+#else
+    const std::string doc = slurp(GLINT_SOURCE_DIR "/docs/SCENES.md");
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(doc, m,
+                                  std::regex(R"(× (\d+) bytes \(ray mode\) or (\d+) bytes \(hybrid )"
+                                             R"(mode\), and in hybrid mode with N×N samples width × )"
+                                             R"(height × N² × (\d+) bytes more.*: 16384 × 16384 in )"
+                                             R"(ray mode needs ([0-9.]+) GiB)")))
+        << "SCENES.md's image memory row";
+    const double ray = std::stod(m[1]), hybrid = std::stod(m[2]), sample = std::stod(m[3]);
+    const auto gib = [](double bytes) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.1f GiB", bytes / (1u << 30));
+        return std::string(text);
+    };
+    EXPECT_EQ(gib(16384.0 * 16384 * ray), m[4].str() + " GiB");
+    const fs::path dir = fresh_dir();
+    const struct {
+        std::string args;
+        double bytes;
+    } cases[] = {
+        {"--size 16384x16384 --samples 1 --mode ray", 16384.0 * 16384 * ray},
+        {"--size 16384x16384 --samples 1 --mode hybrid", 16384.0 * 16384 * hybrid},
+        {"--size 1920x1080 --samples 8 --mode hybrid", 1920.0 * 1080 * (hybrid + 64 * sample)},
+    };
+    for (const auto& c : cases) {
+        const Outcome r = glint(dir, "render -o a.png " + c.args, "ulimit -v 1048576 &&");
+        EXPECT_EQ(r.exit_code, 2) << c.args << ": " << r.err;
+        EXPECT_NE(r.err.find("needs about " + gib(c.bytes)), std::string::npos)
+            << c.args << ": " << r.err;
     }
 #endif
 }
