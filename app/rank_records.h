@@ -1,6 +1,7 @@
 // The messages glint's MPI ranks exchange (docs/DISTRIBUTED.md), each a record whose fields are
-// listed once, by name (trace/record.h; the tracer's counters in trace/frame_records.h): a frame's counters, each rank's figures, a tradeoff run's
-// figures, and a frame's pixels, layer by layer. tests/record_test.cpp round-trips them all.
+// listed once, by name (trace/record.h; the tracer's counters in trace/frame_records.h): a
+// frame's counters, each rank's figures, a tradeoff run's figures, and a frame's pixels, layer by
+// layer. tests/record_test.cpp round-trips them all.
 #pragma once
 
 #include "trace/frame_records.h"

@@ -11,19 +11,14 @@
 #include "io/error.h"
 #include "io/write_file.h"
 #include "trace/cutoff.h"
-#include "trace/image_metrics.h"
 #include "trace/stopwatch.h"
 
 #include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
-#include <ctime>
-#include <functional>
 #include <map>
 #include <memory>
-#include <sstream>
 
 namespace glint {
 namespace {

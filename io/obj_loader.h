@@ -24,7 +24,8 @@ struct ObjPart {
 
 struct ObjModel {
     std::vector<ObjPart> parts;
-    std::vector<std::string> notes;    // what was ignored (lines and points, ...), not naming the file
+    std::vector<std::string> notes;    // what was ignored (lines and points, ...); not naming
+                                       // the file, whose path is printed before them
     std::vector<std::string> warnings; // what could not be used (a material library, a texture)
 };
 

@@ -40,8 +40,7 @@ std::optional<TextureImage> decode_texture(const std::string& bytes, const std::
         return std::nullopt;
     }
     TextureImage image{name, width, height, {}};
-    image.rgb.assign(pixels.get(),
-                     pixels.get() + static_cast<std::size_t>(width) * height * 3);
+    image.rgb.assign(pixels.get(), pixels.get() + static_cast<std::size_t>(width) * height * 3);
     return image;
 }
 

@@ -12,8 +12,7 @@ double FrameLog::percentile(std::vector<double> v, double p) {
 }
 
 void FrameLog::print() const {
-    const auto over =
-        std::count_if(frames.begin(), frames.end(), [](double t) { return t > 100; });
+    const auto over = std::count_if(frames.begin(), frames.end(), [](double t) { return t > 100; });
     std::printf("UI thread: start-up %.0f ms + first frame %.0f ms; then %zu frames, median "
                 "%.1f ms, 99th percentile %.1f "
                 "ms, max %.1f ms, "

@@ -1,6 +1,6 @@
 // The preview's panel (docs/PREVIEW.md): Dear ImGui on the preview's own window and GL context,
 // through the GLFW and OpenGL 3 back ends Debian's libimgui-dev ships. This class owns ImGui's
-// context and frame; what the panel shows and does is the preview's (preview.cpp).
+// context and frame; what the panel shows and does is the preview's (preview/session_panel.cpp).
 #pragma once
 
 struct GLFWwindow;

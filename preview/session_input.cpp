@@ -1,3 +1,5 @@
+// The preview's input (preview/session.h): keys, as H lists them (preview/settings.cpp), and the
+// mouse: a drag orbits or pans, the wheel dollies, a click explains the pixel under it.
 #include "preview/session.h"
 
 #include "io/error.h"

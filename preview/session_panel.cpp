@@ -1,3 +1,5 @@
+// What the preview's panel draws (preview/session.h; the ImGui frame is preview/panel.h's): the
+// settings as controls, the frame's figures, the explained pixel, and its ray tree over the image.
 #include "preview/session.h"
 
 #include "io/error.h"

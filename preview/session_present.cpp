@@ -1,3 +1,5 @@
+// Putting the trace on screen (preview/session.h): a restart draws the item buffer and starts
+// the refiner, its tiles go into a texture as they finish, and the texture onto the window.
 #include "preview/session.h"
 
 #include "io/png.h"

@@ -455,8 +455,8 @@ TEST(Cli, ExplainRefusesAPixelOrSampleOutsideTheImageAndItsGrid) {
     for (const char* args : {"1.5 10", "1e3 10"}) {
         const Outcome r = glint(dir, std::string("explain ") + args + " --json e.json");
         EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
-        EXPECT_NE(r.err.find("glint: error: X '" + std::string(args).substr(0, std::string(args).find(' ')) +
-                             "' is not a whole number"),
+        const std::string x = std::string(args).substr(0, std::string(args).find(' '));
+        EXPECT_NE(r.err.find("glint: error: X '" + x + "' is not a whole number"),
                   std::string::npos)
             << args << ": " << r.err;
         EXPECT_FALSE(fs::exists(dir / "e.json")) << args;

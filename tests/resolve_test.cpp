@@ -52,10 +52,11 @@ IdImage synthetic_ids(const World& world, int n, Spoil spoil) {
             const Hit hit = world.intersect(ray);
             if (!hit.found()) continue;
             ids.ids[p] = hit.object + 1;
-            ids.view_depth[p] = static_cast<float>(hit.t * glm::dot(ray.direction, camera.forward()));
+            ids.view_depth[p] =
+                static_cast<float>(hit.t * glm::dot(ray.direction, camera.forward()));
             if (spoil == Spoil::none) continue;
-            const std::uint32_t h = block_hash(static_cast<std::uint32_t>(x / 4),
-                                               static_cast<std::uint32_t>(y / 4));
+            const std::uint32_t h =
+                block_hash(static_cast<std::uint32_t>(x / 4), static_cast<std::uint32_t>(y / 4));
             switch (h % 8) {
             case 0: // nothing drawn
                 ids.ids[p] = 0;
@@ -131,7 +132,8 @@ TEST_P(ResolveTest, AFrameFromSpoiledIdsIsRayModesFrame) {
         // adaptive resolves the centres' and casts the refined pixels' samples (the grid's ids
         // would add rule 3, --aa-sample-ids, which may differ from ray mode by design).
         PrimarySource source{&centres, Resolve::exact};
-        if (samples > 1 && antialias == Antialias::uniform) source = {nullptr, Resolve::exact, &grid};
+        if (samples > 1 && antialias == Antialias::uniform)
+            source = {nullptr, Resolve::exact, &grid};
         PrimaryStats stats, unused;
         PhaseTimes times;
         const RenderResult hybrid = trace_frame(world, source, stats, {}, times, true);

@@ -79,7 +79,8 @@ struct Image {
 };
 
 // Linear float RGB, row-major, top row first: colour as the tracer computes it, kept in float
-// until a writer turns it into a file's format (Image's bytes above for a PNG, io/png.h; OpenEXR, io/exr.h).
+// until a writer turns it into a file's format (a PNG of Image's bytes above, io/png.h; OpenEXR,
+// io/exr.h).
 struct FloatImage {
     int width = 0;
     int height = 0;
