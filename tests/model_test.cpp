@@ -164,6 +164,15 @@ GltfBuilder triangle() {
     return b;
 }
 
+// The model's glTF text with the float at byte `at` of its buffer replaced by the bits `bits`.
+std::string with_float(GltfBuilder& b, std::size_t at, std::uint32_t bits) {
+    std::string bin = b.bin();
+    std::memcpy(&bin[at], &bits, 4);
+    json d = json::parse(b.gltf());
+    d["buffers"][0]["uri"] = "data:application/octet-stream;base64," + GltfBuilder::base64(bin);
+    return d.dump();
+}
+
 std::vector<BadGltf> bad_gltf() {
     return {
         {"missing buffer file", [](GltfBuilder& b) { return b.gltf_with_file("gone.bin"); },
@@ -199,26 +208,12 @@ std::vector<BadGltf> bad_gltf() {
          },
          "bad.gltf: /accessors/1: index 1 is 7, beyond the 3 vertices"},
         {"NaN position",
-         [](GltfBuilder& b) {
-             std::string bin = b.bin();
-             const std::uint32_t nan = 0x7fc00000;
-             std::memcpy(&bin[16], &nan, 4); // vertex 1's y
-             json d = json::parse(b.gltf());
-             d["buffers"][0]["uri"] = "data:application/octet-stream;base64," + GltfBuilder::base64(bin);
-             return d.dump();
-         },
+         [](GltfBuilder& b) { return with_float(b, 16, 0x7fc00000); }, // vertex 1's y
          "bad.gltf: /accessors/0, element 1: coordinates must be within ±1e15"},
         // The file has no camera, so the framing camera is made from the positions: the bad one
         // is still blamed on its accessor and element, not on the camera framed around it.
         {"infinite position",
-         [](GltfBuilder& b) {
-             std::string bin = b.bin();
-             const std::uint32_t infinity = 0x7f800000;
-             std::memcpy(&bin[12], &infinity, 4); // vertex 1's x
-             json d = json::parse(b.gltf());
-             d["buffers"][0]["uri"] = "data:application/octet-stream;base64," + GltfBuilder::base64(bin);
-             return d.dump();
-         },
+         [](GltfBuilder& b) { return with_float(b, 12, 0x7f800000); }, // vertex 1's x
          "bad.gltf: /accessors/0, element 1: coordinates must be within ±1e15"},
         {"node cycle",
          [](GltfBuilder& b) {
