@@ -23,15 +23,20 @@ void SceneOptions::add_to(CLI::App& cmd) {
                                    "glTF: look through the file's camera N (default: its first)")
                         ->check(CLI::NonNegativeNumber);
     cmd.add_option("--size", size, "Image size WIDTHxHEIGHT, overriding the scene's camera");
-    cmd.add_option("--accel", accel,
-                   "Acceleration structure: bvh (8-wide, SIMD), bvh2 (binary), spheres, grid, kd "
-                   "or list; auto: list below 16 objects, else bvh")
-        ->capture_default_str()
-        ->check(CLI::IsMember([] {
-            std::vector<std::string> names = all_names<AccelKind>();
-            names.insert(names.begin(), "auto");
-            return names;
-        }()));
+    render.add_to(cmd);
+}
+
+void RenderOptions::add_to(CLI::App& cmd) {
+    accel_option =
+        cmd.add_option("--accel", accel,
+                       "Acceleration structure: bvh (8-wide, SIMD), bvh2 (binary), spheres, grid, "
+                       "kd or list; auto: list below 16 objects, else bvh")
+            ->capture_default_str()
+            ->check(CLI::IsMember([] {
+                std::vector<std::string> names = all_names<AccelKind>();
+                names.insert(names.begin(), "auto");
+                return names;
+            }()));
     max_depth_option =
         cmd.add_option("--max-depth", max_depth, "Maximum reflection depth (0 = none)")
             ->check(CLI::Range(0, kMaxDepth));
@@ -52,13 +57,29 @@ void SceneOptions::add_to(CLI::App& cmd) {
                        "Adaptive: the largest colour difference (0 to 1, per channel) between "
                        "neighbours' first samples that leaves a pixel unrefined")
             ->check(CLI::Range(0.0, 1.0));
-    cmd.add_option("--packet-levels", packet_levels,
-                   "Secondary rays in packets: cast the first N levels of each tile's reflected "
-                   "and transmitted rays ahead, 16 to a packet in the bvh. The image is the same "
-                   "for any N; on SPD's scenes one level was within 3% of none either way "
-                   "(docs/PERFORMANCE.md)")
-        ->capture_default_str()
-        ->check(CLI::Range(0, kMaxDepth));
+    packet_levels_option =
+        cmd.add_option("--packet-levels", packet_levels,
+                       "Secondary rays in packets: cast the first N levels of each tile's "
+                       "reflected and transmitted rays ahead, 16 to a packet in the bvh. The image "
+                       "is the same for any N; on SPD's scenes one level was within 3% of none "
+                       "either way (docs/PERFORMANCE.md)")
+            ->capture_default_str()
+            ->check(CLI::Range(0, kMaxDepth));
+}
+
+void RenderOptions::apply(Scene& scene) const {
+    RenderSettings& render = scene.render;
+    if (max_depth_option->count()) render.max_depth = max_depth;
+    if (min_reflectivity_option->count())
+        render.min_reflectivity = static_cast<float>(min_reflectivity);
+    if (samples_option->count()) render.samples = samples;
+    if (!antialias.empty()) render.antialias = *from_name<Antialias>(antialias);
+    if (aa_threshold_option->count()) render.aa_threshold = aa_threshold;
+    if (packet_levels_option->count()) render.packet_levels = packet_levels;
+}
+
+std::optional<AccelKind> RenderOptions::accel_kind() const {
+    return from_name<AccelKind>(accel);
 }
 
 fs::path SceneOptions::scene_path() const {
@@ -73,18 +94,8 @@ Scene SceneOptions::load() const {
     if (camera_option->count()) model.camera = camera;
     if (!size.empty()) model.size = parse_size(size, "--size");
     Scene loaded = load_scene_with_notes(scene_path(), model);
-    if (max_depth_option->count()) loaded.render.max_depth = max_depth;
-    if (min_reflectivity_option->count())
-        loaded.render.min_reflectivity = static_cast<float>(min_reflectivity);
-    if (samples_option->count()) loaded.render.samples = samples;
-    if (!antialias.empty()) loaded.render.antialias = *from_name<Antialias>(antialias);
-    if (aa_threshold_option->count()) loaded.render.aa_threshold = aa_threshold;
-    loaded.render.packet_levels = packet_levels;
+    render.apply(loaded);
     return loaded;
-}
-
-std::optional<AccelKind> SceneOptions::accel_kind() const {
-    return from_name<AccelKind>(accel);
 }
 
 void FrameOptions::add_to(CLI::App& cmd, bool with_mode, bool with_gl) {

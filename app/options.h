@@ -20,29 +20,42 @@ class UsageError : public std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-struct SceneOptions {
-    std::string scene;
+// The scene's render settings a command line may override (and each side of `glint compare
+// --a … --b …`, app/compare_sides.cpp): only those given change the scene's.
+struct RenderOptions {
     std::string accel = "auto";
-    std::string size;
     int max_depth = 0;
     double min_reflectivity = 0;
-    CLI::Option* max_depth_option = nullptr;
-    CLI::Option* min_reflectivity_option = nullptr;
     int samples = 1;
     std::string antialias;
     float aa_threshold = kDefaultAaThreshold;
+    int packet_levels = 0;
+    CLI::Option* max_depth_option = nullptr;
+    CLI::Option* min_reflectivity_option = nullptr;
     CLI::Option* samples_option = nullptr;
     CLI::Option* aa_threshold_option = nullptr;
+    CLI::Option* packet_levels_option = nullptr;
+    CLI::Option* accel_option = nullptr;
+
+    void add_to(CLI::App& cmd);
+    // Sets the scene's render settings that were given.
+    void apply(Scene& scene) const;
+    // The --accel choice; nothing for auto (list below kListBelow objects, else bvh).
+    std::optional<AccelKind> accel_kind() const;
+};
+
+struct SceneOptions {
+    std::string scene;
+    std::string size;
     int camera = 0;
     CLI::Option* camera_option = nullptr;
-    int packet_levels = 0;
+    RenderOptions render;
 
     void add_to(CLI::App& cmd);
     std::filesystem::path scene_path() const; // the given scene, or scenes/default.json
     // Loads the scene (SceneError on bad input) and applies the overrides (UsageError).
     Scene load() const;
-    // The --accel choice; nothing for auto (list below kListBelow objects, else bvh).
-    std::optional<AccelKind> accel_kind() const;
+    std::optional<AccelKind> accel_kind() const { return render.accel_kind(); }
 };
 
 struct FrameOptions {

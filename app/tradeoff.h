@@ -94,16 +94,10 @@ struct Run {
     std::optional<std::uint64_t> refined; // adaptive antialiasing: pixels that took the grid
     std::uint64_t pixels = 0;             // of the image rendered
 
-    // Per frame: the frame's wall time less what the one-time GL set-up (context, shader
-    // compilation) added to it. The set-up runs first on the GL pass's thread, beside the World's
-    // preparation, and `overlapped` counts the seconds of that pass the preparation hid: those
-    // came off the wall time already. Subtracting the set-up whole again made a frame whose
-    // set-up was hidden take negative time (−0.0001 s for tree-3), which gnuplot's log axis
-    // crashed on (a segmentation fault in Cli.CompareAndTradeoffTakeNffAndObjScenes, 1 run in 13).
-    double frame_seconds() const {
-        const PhaseTimes& t = frame.times;
-        return t.total() - std::max(0.0, t.context + t.compile - t.overlapped);
-    }
+    // Per frame (PhaseTimes::per_frame). Subtracting the GL set-up whole, hidden or not, once made
+    // tree-3's frame take −0.0001 s, which gnuplot's log axis crashed on (a segmentation fault
+    // in Cli.CompareAndTradeoffTakeNffAndObjScenes, 1 run in 13).
+    double frame_seconds() const { return frame.times.per_frame(); }
     double total_seconds() const { return frame.times.total(); }
 };
 

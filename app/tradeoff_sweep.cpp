@@ -1,6 +1,8 @@
 // The settings `glint tradeoff` sweeps for a scene: each knob varied alone from the default.
 #include "app/tradeoff.h"
 
+#include "io/error.h"
+
 #include <cstdio>
 #include <map>
 

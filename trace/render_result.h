@@ -10,6 +10,7 @@
 #include "trace/scene.h"
 #include "trace/tiles.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -108,6 +109,11 @@ struct PhaseTimes {
     double total() const {
         return prepare + context + compile + upload + raster + primary + shading - overlapped;
     }
+    // Per frame: the wall time less what the one-time GL set-up (context, shader compilation)
+    // added to it, which a preview or a sweep pays once. The set-up runs on the GL pass's thread
+    // beside the World's preparation, and `overlapped` counts what that hid: it came off the wall
+    // time already (subtracting the set-up whole made a hidden one's frame negative).
+    double per_frame() const { return total() - std::max(0.0, context + compile - overlapped); }
 };
 
 // A ray-mode render from the scene (World, primary rays, shading), timing its phases into
