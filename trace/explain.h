@@ -6,6 +6,7 @@
 
 #include "trace/render_result.h"
 #include "trace/primary_hits.h"
+#include "trace/ray_tree.h"
 #include "trace/recorder.h"
 
 #include <array>
@@ -55,6 +56,11 @@ struct PixelExplanation {
 // render's RenderResult::refined); ignored unless the scene is adaptive with N > 1.
 PixelExplanation explain_pixel(const World& world, const PrimarySource& source, int x, int y, int a,
                                int b, bool refined = false);
+
+// Every sample's tree of pixel (x, y) as the render traces it from `source` (trace/ray_tree.h):
+// the grid's N² samples where the pixel takes its grid, else its centre's one. `refined` as above.
+PixelTrees pixel_trees(const World& world, const PrimarySource& source, int x, int y,
+                       bool refined = false);
 
 } // namespace GLINT_PRECISION
 } // namespace glint
