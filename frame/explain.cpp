@@ -1,6 +1,7 @@
 #include "frame/explain.h"
 
 #include "frame/record_json.h"
+#include "frame/text_format.h"
 #include "io/error.h"
 #include "trace/frame_records.h"
 #include "trace/shapes/table.h"
@@ -103,10 +104,6 @@ std::string num(double x, const char* format) {
     char text[32];
     std::snprintf(text, sizeof text, format, x);
     return text;
-}
-std::string bytes(const std::array<std::uint8_t, 3>& b) {
-    return "(" + std::to_string(b[0]) + ", " + std::to_string(b[1]) + ", " + std::to_string(b[2]) +
-           ")";
 }
 std::string counts(const RayCounts& r) {
     return std::to_string(r.primary) + " primary, " + std::to_string(r.shadow) + " shadow, " +
@@ -235,12 +232,12 @@ std::string explanation_text(const Scene& scene, const World& world, const Pixel
     out += "\n";
     for (std::size_t i = 0; i < e.rays.size(); ++i) write_ray(out, facts, e, i);
     out += "\nsample: R_0 = " + colour(e.rays.front().colour) + " → bytes " +
-           bytes(e.sample_bytes) + "\n";
+           bytes_text(e.sample_bytes) + "\n";
     out += "pixel: ";
     out += e.averaged ? "the mean of its " + std::to_string(e.n * e.n) +
                             " samples, each clamped, " + colour(e.pixel_colour)
                       : std::string("this sample");
-    out += " → bytes " + bytes(e.pixel_bytes) + "\n";
+    out += " → bytes " + bytes_text(e.pixel_bytes) + "\n";
     out += "rays: this tree " + counts(e.tree_rays);
     if (e.averaged) out += "; the pixel " + counts(e.pixel_rays);
     return out + "\n";

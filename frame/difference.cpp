@@ -1,0 +1,149 @@
+#include "frame/difference.h"
+
+#include "io/error.h"
+
+#include "trace/explain.h"
+#include "trace/stopwatch.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace glint {
+
+void make_exact(Side& side) {
+    side.frame.mode = Mode::ray;
+    side.frame.precision = Precision::f64;
+    side.scene.render.max_depth = kMaxDepth;
+    side.scene.render.min_reflectivity = 0;
+}
+
+std::string describe_side(const Side& side) {
+    const FrameSettings& f = side.frame;
+    const RenderSettings& r = side.scene.render;
+    std::ostringstream out;
+    out << name_of(f.mode);
+    if (f.precision == Precision::f64) out << " double";
+    if (f.mode == Mode::hybrid) {
+        out << " " << name_of(f.raster);
+        if (f.raster != RasterMode::proxy) out << " tess " << f.tessellation;
+        out << " " << name_of(f.resolve);
+    }
+    out << ", depth " << r.max_depth << ", ";
+    if (r.min_reflectivity > 0)
+        out << "cut-off " << r.min_reflectivity;
+    else
+        out << "no cut-off";
+    if (r.samples > 1) {
+        out << ", " << r.samples << "x" << r.samples << " " << name_of(r.antialias);
+        if (r.antialias == Antialias::adaptive) out << " " << r.aa_threshold;
+    }
+    if (side.accel) out << ", " << name_of(*side.accel);
+    return out.str();
+}
+
+RenderedSide::RenderedSide(Side side) : side_(std::move(side)) {
+    if (side_.frame.precision == Precision::f64) {
+        frame_ = render_frame(side_.scene, side_.accel, side_.frame);
+        return;
+    }
+    // As render_frame from a scene does, keeping the World for the pixels traced again.
+    std::optional<GlPass> pass;
+    if (needs_gl(side_.frame, side_.scene.objects.size())) pass.emplace(side_.frame);
+    double prepare = 0;
+    world_ = timed(prepare, [&] { return std::make_unique<World>(side_.scene, side_.accel); });
+    frame_ = render_frame(*world_, side_.frame, nullptr, pass ? &*pass : nullptr);
+    frame_.times.prepare = prepare;
+}
+
+RenderedSide::~RenderedSide() = default;
+RenderedSide::RenderedSide(RenderedSide&&) noexcept = default;
+
+std::vector<PixelTrees> RenderedSide::trees(std::span<const std::uint32_t> pixels) const {
+    const std::vector<std::uint8_t>& refined = frame_.result.refined;
+    if (!world_) return f64::ray_traced_trees(side_.scene, side_.accel, pixels, refined);
+    const PrimarySource source = primary_source(frame_, side_.frame.resolve);
+    const auto width = static_cast<std::uint32_t>(side_.scene.camera.width);
+    std::vector<PixelTrees> out(pixels.size());
+    tbb::parallel_for(std::size_t{0}, pixels.size(), [&](std::size_t i) {
+        const std::uint32_t p = pixels[i];
+        out[i] = pixel_trees(*world_, source, static_cast<int>(p % width),
+                             static_cast<int>(p / width), !refined.empty() && refined[p] != 0);
+    });
+    return out;
+}
+
+double FrameDifference::share(Cause cause) const {
+    const CauseTally& t = tallies[static_cast<std::size_t>(cause)];
+    if (squared_error > 0) return t.squared_error / squared_error;
+    return differing > 0 ? static_cast<double>(t.pixels) / static_cast<double>(differing) : 0;
+}
+
+namespace {
+
+bool radiance_differs(const float* a, const float* b) {
+    return a[0] != b[0] || a[1] != b[1] || a[2] != b[2];
+}
+
+// Adds a differing pixel to its cause's tally.
+void count(FrameDifference& d, const Divergence& why, double squared, double largest) {
+    CauseTally& t = d.tallies[static_cast<std::size_t>(why.cause)];
+    ++t.pixels;
+    t.squared_error += squared;
+    t.largest = std::max(t.largest, largest);
+    if (why.cause == Cause::depth || why.cause == Cause::cutoff || why.cause == Cause::secondary) {
+        const auto level = static_cast<std::size_t>(why.level);
+        if (t.levels.size() <= level) t.levels.resize(level + 1);
+        ++t.levels[level];
+    }
+    ++d.differing;
+    d.squared_error += squared;
+}
+
+} // namespace
+
+FrameDifference difference(const RenderedSide& a, const RenderedSide& b, bool radiance) {
+    const RenderResult &ra = a.frame().result, &rb = b.frame().result;
+    FrameDifference d;
+    d.width = ra.radiance.width, d.height = ra.radiance.height;
+    const std::size_t pixels = static_cast<std::size_t>(d.width) * d.height;
+    d.causes.assign(pixels, Cause::none);
+    d.error.assign(pixels, 0.0f);
+    const FloatImage &da = ra.display(), &db = rb.display();
+    std::vector<std::uint32_t> differing;
+    for (std::size_t p = 0; p < pixels; ++p) {
+        const float *x = ra.radiance.pixel(p), *y = rb.radiance.pixel(p);
+        float largest = 0;
+        for (int k = 0; k < 3; ++k) largest = std::max(largest, std::abs(x[k] - y[k]));
+        d.error[p] = largest;
+        d.largest = std::max(d.largest, static_cast<double>(largest));
+        bool differs = radiance && radiance_differs(x, y);
+        for (int k = 0; k < 3 && !differs; ++k)
+            differs = to_byte(da.pixel(p)[k]) != to_byte(db.pixel(p)[k]);
+        if (differs) differing.push_back(static_cast<std::uint32_t>(p));
+    }
+    const Stopwatch watch;
+    const std::vector<PixelTrees> ta = a.trees(differing), tb = b.trees(differing);
+    d.trace_seconds = watch.seconds();
+    for (std::size_t i = 0; i < differing.size(); ++i) {
+        const std::uint32_t p = differing[i];
+        const Divergence why = first_divergence(ta[i], tb[i]);
+        d.causes[p] = why.cause;
+        const float *x = ra.radiance.pixel(p), *y = rb.radiance.pixel(p);
+        double squared = 0;
+        for (int k = 0; k < 3; ++k) squared += double(x[k] - y[k]) * double(x[k] - y[k]);
+        count(d, why, squared, d.error[p]);
+    }
+    return d;
+}
+
+Divergence pixel_difference(const PixelTrees& a, const PixelTrees& b, bool radiance) {
+    bool differs = a.bytes != b.bytes;
+    for (int k = 0; k < 3 && radiance && !differs; ++k)
+        differs = static_cast<float>(a.radiance[k]) != static_cast<float>(b.radiance[k]);
+    return differs ? first_divergence(a, b) : Divergence{};
+}
+
+} // namespace glint
