@@ -1,6 +1,6 @@
 // `glint compare`: the same scene in hybrid and ray mode in one run, phase by phase, with the
 // ray image as the reference: id agreement, fallbacks, PSNR, maximum error, pixels off by > 1/255.
-#include "app/options.h"
+#include "app/compare.h"
 #include "app/phase_json.h"
 #include "frame/record_json.h"
 
@@ -19,13 +19,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CompareArgs {
-    SceneOptions scene;
-    FrameOptions frame;
-    std::string prefix;
-    std::string json;
-};
-
 std::string seconds(double s) {
     char text[32];
     std::snprintf(text, sizeof text, "%9.4f", s);
@@ -34,6 +27,9 @@ std::string seconds(double s) {
 
 // Every check on the input, before anything is rendered or written; returns the scene.
 Scene prepare(const CompareArgs& args) {
+    if (args.exr)
+        throw UsageError("--exr writes the float error of --a against --b: give the sides (e.g. "
+                         "--a exact), or use `glint render -o NAME.exr` for one image");
     if (!args.prefix.empty()) check_output(args.prefix + "-ray.png", "-o");
     if (!args.json.empty()) check_output(args.json, "--json");
     Scene scene = args.scene.load();
@@ -162,6 +158,7 @@ nlohmann::ordered_json comparison_json(const CompareArgs& args, const Comparison
 }
 
 int run_compare(const CompareArgs& args) {
+    if (args.sides()) return run_compare_sides(args);
     const Scene scene = prepare(args);
     const World world(scene, args.scene.accel_kind());
     const Comparison c = compare(args, scene, world);
@@ -200,13 +197,23 @@ int run_compare(const CompareArgs& args) {
 Command add_compare_command(CLI::App& app) {
     auto args = std::make_shared<CompareArgs>();
     CLI::App* cmd = app.add_subcommand(
-        "compare", "Render in hybrid and ray mode side by side and measure the difference");
+        "compare", "Render two settings side by side (hybrid and ray mode unless --a/--b say "
+                   "otherwise), measure the difference and say why each pixel differs");
     args->scene.add_to(*cmd);
     args->frame.add_to(*cmd, false);
     cmd->add_option("-o,--output", args->prefix,
-                    "Write PREFIX-ray.png, -hybrid.png, -diff.png and -ids.png");
+                    "Write PREFIX-ray.png, -hybrid.png, -diff.png and -ids.png; with --a/--b "
+                    "PREFIX-a.png, -b.png, -heat.png and -causes.png (PREFIX.exr: also "
+                    "PREFIX-heat.exr)");
     cmd->add_option("--json", args->json, "Also write the measurements as JSON here");
-    return {cmd, [args] { prepare(*args); },
+    args->a_option = cmd->add_option(
+        "--a", args->a,
+        "Side A's render flags, quoted (\"--max-depth 2 --accel grid\"), or exact (ray traced in "
+        "double, depth 64, no cut-off); unset flags are compare's own (docs/TRADEOFF.md)");
+    args->b_option = cmd->add_option("--b", args->b, "Side B's render flags, as --a");
+    cmd->add_flag("--exr", args->exr,
+                  "With --a/--b: also write the float error |A - B| as PREFIX-heat.exr");
+    return {cmd, [args] { args->sides() ? check_compare_sides(*args) : (void)prepare(*args); },
             [args] { return guarded([&] { return run_compare(*args); }); }};
 }
 

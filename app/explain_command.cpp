@@ -1,8 +1,9 @@
 // `glint explain [SCENE] X Y`: one pixel's ray tree, in the lecture's notation or as JSON
 // (frame/explain.h, docs/EXPLAIN.md).
-#include "app/options.h"
+#include "app/compare.h"
 
 #include "frame/explain.h"
+#include "frame/explain_against.h"
 #include "io/write_file.h"
 #include "trace/image.h"
 
@@ -19,11 +20,15 @@ struct ExplainArgs {
     std::vector<std::string> pixel; // X Y (prepare() sorts out [SCENE] X Y)
     std::string sample;
     std::string json;
+    std::string against; // --against: the other side's flags
+    CLI::Option* against_option = nullptr;
 };
 
 struct ExplainJob {
     Scene scene;
     int x = 0, y = 0, a = 0, b = 0;
+    bool sample_given = false;
+    std::optional<Side> against;
 };
 
 int whole_number(const std::string& text, const std::string& what) {
@@ -76,6 +81,7 @@ ExplainJob prepare(ExplainArgs& args) {
         if (comma == std::string::npos)
             throw UsageError("--sample " + args.sample +
                              ": expected A,B (column, row in the grid)");
+        job.sample_given = true;
         job.a = whole_number(args.sample.substr(0, comma), "--sample A");
         job.b = whole_number(args.sample.substr(comma + 1), "--sample B");
         if (job.a < 0 || job.a >= n || job.b < 0 || job.b >= n)
@@ -83,11 +89,33 @@ ExplainJob prepare(ExplainArgs& args) {
                              std::to_string(n) + "x" + std::to_string(n) +
                              " grid of samples (A and B from 0 to " + std::to_string(n - 1) + ")");
     }
+    if (args.against_option->count())
+        job.against = parse_side("--against", args.against, job.scene, args.scene, args.frame);
     return job;
+}
+
+// --against: the pixel under explain's own settings (A) and the other side's (B).
+int run_against(const ExplainArgs& args, const ExplainJob& job) {
+    Side own;
+    own.label = "(explain's own settings)";
+    own.scene = job.scene, own.accel = args.scene.accel_kind(), own.frame = args.frame.settings();
+    const RenderedSide a(std::move(own));
+    const RenderedSide b(*job.against);
+    const int n = job.scene.render.samples;
+    const PixelAgainst p =
+        explain_against(a, b, job.x, job.y, job.sample_given ? job.b * n + job.a : -1);
+    const std::string scene = args.scene.scene_path().string();
+    std::fputs(against_text(a, b, p, scene).c_str(), stdout);
+    if (!args.json.empty()) {
+        write_file_atomically(args.json, against_json(a, b, p, scene));
+        std::printf("glint: wrote %s\n", args.json.c_str());
+    }
+    return 0;
 }
 
 int run_explain(ExplainArgs& args) {
     const ExplainJob job = prepare(args);
+    if (job.against) return run_against(args, job);
     const World world(job.scene, args.scene.accel_kind());
     const PixelExplanation e =
         explain_frame_pixel(world, args.frame.settings(), job.x, job.y, job.a, job.b);
@@ -119,6 +147,10 @@ Command add_explain_command(CLI::App& app) {
                     "A,B: which sample of the pixel's NxN grid to explain; default the centre "
                     "one (N/2, N/2)");
     cmd->add_option("--json", args->json, "Also write the explanation as JSON (docs/EXPLAIN.md)");
+    args->against_option = cmd->add_option(
+        "--against", args->against,
+        "Another setting's flags, quoted (\"--max-depth 2\"), or exact: the pixel's two ray trees "
+        "side by side, where they part and why (docs/EXPLAIN.md)");
     // render's outputs: explain writes none of them.
     refuse_option(*cmd, "-o,--output",
                   "explain writes no image: it prints the pixel's ray tree (--json writes it as "
