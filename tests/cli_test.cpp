@@ -270,6 +270,52 @@ TEST(Cli, TradeoffWritesTheCsvAPlotPerSceneAndTheSummary) {
 }
 
 // The commands take NFF files and scenes with OBJ meshes as they take JSON scenes.
+// compare --a --b (docs/TRADEOFF.md, "Why a pixel differs"): both images, the heat and cause
+// maps, the float error, and JSON whose causes add up; explain --against at a pixel the map
+// paints names the same cause. A bad side writes nothing.
+TEST(Cli, CompareTwoSettingsWritesTheMapsAndExplainAgainstAgrees) {
+    const fs::path dir = fresh_dir();
+    const std::string scene = "'" GLINT_SOURCE_DIR "/scenes/mirrors.json' --size 64x48 --samples 1 ";
+    Outcome r = glint(dir, "compare " + scene + "--a '--max-depth 2' --b '--max-depth 10' -o m.exr --json m.json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const char* file : {"m-a.png", "m-b.png", "m-heat.png", "m-causes.png", "m-heat.exr"})
+        EXPECT_TRUE(fs::exists(dir / file)) << file;
+    EXPECT_NE(r.out.find("depth"), std::string::npos) << r.out;
+    const nlohmann::json j = nlohmann::json::parse(slurp(dir / "m.json"));
+    EXPECT_EQ(j["schema"], "glint-compare-sides/1");
+    const auto differing = j["differing_pixels"].get<std::uint64_t>();
+    ASSERT_GT(differing, 0u);
+    EXPECT_EQ(j["causes"]["depth"]["pixels"].get<std::uint64_t>(), differing);
+    EXPECT_EQ(j["causes"]["depth"]["levels"]["3"].get<std::uint64_t>(), differing);
+    EXPECT_DOUBLE_EQ(j["causes"]["depth"]["share"].get<double>(), 1.0);
+    EXPECT_GT(j["a"]["seconds"].get<double>(), 0.0);
+    EXPECT_GT(j["time_ratio"].get<double>(), 0.0);
+
+    // The left mirror's corridor: pixel (4, 30) goes deeper than 2 reflections.
+    r = glint(dir, "explain " + scene + "4 30 --max-depth 2 --against '--max-depth 10' --json e.json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("<- depth"), std::string::npos) << r.out;
+    const nlohmann::json e = nlohmann::json::parse(slurp(dir / "e.json"));
+    EXPECT_EQ(e["schema"], "glint-explain-against/1");
+    EXPECT_EQ(e["cause"], "depth");
+    r = glint(dir, "explain " + scene + "4 30 --against '--samples 1'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("no difference"), std::string::npos) << r.out;
+
+    const fs::path bad = fresh_dir() / "bad";
+    fs::create_directories(bad);
+    r = glint(bad, "compare " + scene + "--a '--max-depth 2' --b '--tess 1' -o m --json m.json");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("--b \"--tess 1\": --tess"), std::string::npos) << r.err;
+    r = glint(bad, "explain " + scene + "3 3 --against '--size 4x4' --json e.json");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("--against \"--size 4x4\": --size: both sides render the same scene"),
+              std::string::npos)
+        << r.err;
+    for (const auto& entry : fs::directory_iterator(bad))
+        EXPECT_TRUE(entry.path().extension() == ".txt") << entry.path() << " written";
+}
+
 TEST(Cli, CompareAndTradeoffTakeNffAndObjScenes) {
     const fs::path dir = fresh_dir();
     Outcome r = glint(dir, "compare '" GLINT_SOURCE_DIR "/tests/data/spd/rings-1.nff' --size "
@@ -394,7 +440,16 @@ INSTANTIATE_TEST_SUITE_P(EveryClass, BadRunTest, ::testing::Values(
     BadRun{"no such command", "", "paint scene.json", "glint: error: no command 'paint' (glint's commands: render,"},
     BadRun{"explain: render's -o", "", "explain -o x.png 10 10", "glint: error: -o: explain writes no image"},
     BadRun{"sample ids in ray mode", "", "render --aa-sample-ids --mode ray", "glint: error: --aa-sample-ids refines where the item buffer's samples name several objects: hybrid mode only"},
-    BadRun{"preview: --gl", "", "preview --gl egl", "glint: error: --gl: the preview draws with its window's own GL context"}
+    BadRun{"preview: --gl", "", "preview --gl egl", "glint: error: --gl: the preview draws with its window's own GL context"},
+    // compare's sides (docs/TRADEOFF.md, "Why a pixel differs"): each message names the side.
+    BadRun{"compare: unknown flag in a side", "", "compare --size 8x6 --a '--fast'", "glint: error: --a \"--fast\": The following argument was not expected: --fast"},
+    BadRun{"compare: bad value in a side", "", "compare --size 8x6 --b '--max-depth deep'", "glint: error: --b \"--max-depth deep\": --max-depth: Value deep not in range 0 to 64"},
+    BadRun{"compare: shared flag in a side", "", "compare --size 8x6 --b '--size 10x10'", "glint: error: --b \"--size 10x10\": --size: both sides render the same scene at the same size: give it outside --b"},
+    BadRun{"compare: camera in a side", "", "compare --size 8x6 --a '--camera 1'", "glint: error: --a \"--camera 1\": --camera: both sides render the same scene"},
+    BadRun{"compare: empty side", "", "compare --size 8x6 --a ' '", "glint: error: --a is empty: give the side's render flags"},
+    BadRun{"compare: exact in hybrid mode", "", "compare --size 8x6 --a 'exact --mode hybrid'", "--mode hybrid cannot go with it"},
+    BadRun{"compare: a word in a side", "", "compare --size 8x6 --a 'deep'", "glint: error: --a \"deep\": The following argument was not expected: deep"},
+    BadRun{"compare: --exr without sides", "", "compare --size 8x6 --exr", "glint: error: --exr writes the float error of --a against --b"}
 ), [](const auto& info) { return testing::test_name(info.param.what); });
 // clang-format on
 
