@@ -167,9 +167,9 @@ void print_sides(const CompareArgs& args, const RenderedSide& a, const RenderedS
         std::printf("PSNR:              %.2f dB\n", diff.psnr_db);
     std::printf("radiance error:    RMSE %.3g, largest %.3g (linear, unclamped)\n", diff.rmse,
                 diff.max_radiance_error);
-    std::printf("causes found in:   %.4f s (the differing pixels traced again on both sides, "
-                "%.3f of A's frame)\n\n",
-                d.trace_seconds, d.trace_seconds / ta);
+    std::printf("causes found in:   %.4f s (%llu differing pixels traced again on both sides, "
+                "%.3f of A's frame; the rest took other sample grids)\n\n",
+                d.trace_seconds, static_cast<unsigned long long>(d.traced), d.trace_seconds / ta);
     std::printf("%-10s %10s %9s %12s  %s\n", "cause", "pixels", "share", "largest", "by level");
     for (std::size_t c = 1; c < kCauses; ++c) {
         const CauseTally& t = d.tallies[c];
@@ -219,6 +219,7 @@ nlohmann::ordered_json sides_json(const CompareArgs& args, const RenderedSide& a
             {"rmse_radiance", diff.rmse},
             {"max_error_radiance", diff.max_radiance_error},
             {"squared_error", d.squared_error},
+            {"traced_pixels", d.traced},
             {"trace_seconds", d.trace_seconds},
             {"causes", causes}};
 }

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 namespace glint {
 
@@ -47,6 +48,7 @@ std::string describe_side(const Side& side) {
 RenderedSide::RenderedSide(Side side) : side_(std::move(side)) {
     if (side_.frame.precision == Precision::f64) {
         frame_ = render_frame(side_.scene, side_.accel, side_.frame);
+        tracer_ = f64::ray_pixel_tracer(side_.scene, side_.accel);
         return;
     }
     // As render_frame from a scene does, keeping the World for the pixels traced again.
@@ -58,12 +60,24 @@ RenderedSide::RenderedSide(Side side) : side_(std::move(side)) {
     frame_.times.prepare = prepare;
 }
 
+RenderedSide::RenderedSide(Side side, Frame frame,
+                           const std::shared_ptr<const SceneGeometry>& geometry)
+    : side_(std::move(side)), frame_(std::move(frame)) {
+    if (side_.resampled) return; // no pixel of it is traced again
+    if (side_.frame.precision == Precision::f64)
+        tracer_ = f64::ray_pixel_tracer(side_.scene, side_.accel);
+    else
+        world_ = geometry ? std::make_unique<World>(side_.scene, geometry, side_.accel)
+                          : std::make_unique<World>(side_.scene, side_.accel);
+}
+
 RenderedSide::~RenderedSide() = default;
 RenderedSide::RenderedSide(RenderedSide&&) noexcept = default;
 
 std::vector<PixelTrees> RenderedSide::trees(std::span<const std::uint32_t> pixels) const {
     const std::vector<std::uint8_t>& refined = frame_.result.refined;
-    if (!world_) return f64::ray_traced_trees(side_.scene, side_.accel, pixels, refined);
+    if (tracer_) return tracer_->trees(pixels, refined);
+    if (!world_) throw std::logic_error("a resampled frame's pixels are not traced again");
     const PrimarySource source = primary_source(frame_, side_.frame.resolve);
     const auto width = static_cast<std::uint32_t>(side_.scene.camera.width);
     std::vector<PixelTrees> out(pixels.size());
@@ -73,6 +87,15 @@ std::vector<PixelTrees> RenderedSide::trees(std::span<const std::uint32_t> pixel
                              static_cast<int>(p / width), !refined.empty() && refined[p] != 0);
     });
     return out;
+}
+
+int RenderedSide::grid_at(std::uint32_t p) const {
+    if (side_.resampled) return 0;
+    const RenderSettings& render = side_.scene.render;
+    const std::vector<std::uint8_t>& refined = frame_.result.refined;
+    const bool grid = render.samples > 1 && (render.antialias == Antialias::uniform ||
+                                             (!refined.empty() && refined[p] != 0));
+    return grid ? render.samples : 1;
 }
 
 double FrameDifference::share(Cause cause) const {
@@ -124,12 +147,22 @@ FrameDifference difference(const RenderedSide& a, const RenderedSide& b, bool ra
             differs = to_byte(da.pixel(p)[k]) != to_byte(db.pixel(p)[k]);
         if (differs) differing.push_back(static_cast<std::uint32_t>(p));
     }
+    // Where the grids differ the cause is sampling before any tree is walked; the rest are
+    // traced again on both sides.
+    std::vector<std::uint32_t> traced;
+    for (const std::uint32_t p : differing)
+        if (a.grid_at(p) == b.grid_at(p)) traced.push_back(p);
     const Stopwatch watch;
-    const std::vector<PixelTrees> ta = a.trees(differing), tb = b.trees(differing);
+    const std::vector<PixelTrees> ta = a.trees(traced), tb = b.trees(traced);
     d.trace_seconds = watch.seconds();
-    for (std::size_t i = 0; i < differing.size(); ++i) {
-        const std::uint32_t p = differing[i];
-        const Divergence why = first_divergence(ta[i], tb[i]);
+    d.traced = traced.size();
+    std::size_t next = 0; // in `traced`, which follows `differing`'s order
+    for (const std::uint32_t p : differing) {
+        Divergence why{Cause::sampling};
+        if (next < traced.size() && traced[next] == p) {
+            why = first_divergence(ta[next], tb[next]);
+            ++next;
+        }
         d.causes[p] = why.cause;
         const float *x = ra.radiance.pixel(p), *y = rb.radiance.pixel(p);
         double squared = 0;

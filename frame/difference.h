@@ -23,6 +23,9 @@ struct Side {
     Scene scene;
     std::optional<AccelKind> accel;
     FrameSettings frame;
+    // The frame was rendered smaller and enlarged to the scene's size (`glint tradeoff`'s size
+    // knob): none of its pixels took the samples a full-size pixel takes.
+    bool resampled = false;
 };
 
 // The exact image's settings, as `glint tradeoff` renders it: ray traced in double precision,
@@ -32,23 +35,31 @@ void make_exact(Side& side);
 // One line for people: "ray double, depth 64, no cut-off, bvh".
 std::string describe_side(const Side& side);
 
-// A side rendered, with what tracing its pixels again needs: its World (float) or its scene
-// (double, whose World is built again for the pixels asked for).
+// A side rendered, with what tracing its pixels again needs: its World (float), or a tracer of
+// its own precision (double).
 class RenderedSide {
   public:
     // Renders the side's frame; times.prepare counts its World's preparation in either precision.
     explicit RenderedSide(Side side);
+    // A frame rendered already with the side's settings (`glint tradeoff` measures its runs
+    // first); `geometry`: the scene's, prepared already (float), or null.
+    RenderedSide(Side side, Frame frame, const std::shared_ptr<const SceneGeometry>& geometry);
     ~RenderedSide();
     RenderedSide(RenderedSide&&) noexcept;
 
     const Side& side() const { return side_; }
     const Frame& frame() const { return frame_; }
+    // Gives the frame back (the side can trace no pixel after).
+    Frame take_frame() && { return std::move(frame_); }
     // The pixels' trees (row-major indices into the frame), as the frame traced them.
     std::vector<PixelTrees> trees(std::span<const std::uint32_t> pixels) const;
+    // The samples pixel p took a side: N (its N×N grid), 1 (its centre), 0 (resampled).
+    int grid_at(std::uint32_t p) const;
 
   private:
     Side side_;
-    std::unique_ptr<World> world_; // float precision only
+    std::unique_ptr<World> world_;        // float precision
+    std::unique_ptr<PixelTracer> tracer_; // double precision
     Frame frame_;
 };
 
@@ -68,14 +79,16 @@ struct FrameDifference {
     std::uint64_t differing = 0;
     double squared_error = 0; // over the differing pixels: the tallies' sum
     double largest = 0;       // the largest error of any pixel
-    double trace_seconds = 0; // tracing the differing pixels again on both sides
+    std::uint64_t traced = 0; // differing pixels traced again (the rest: their grids differ)
+    double trace_seconds = 0; // tracing them again on both sides
     // A cause's share of the squared radiance error of the differing pixels (by pixels where
     // that error is 0: pixels whose bytes differ while their radiance agrees).
     double share(Cause cause) const;
 };
 
 // Compares the two frames: a pixel differs where its PNG bytes do, and with `radiance` also
-// where its radiance does (a float output's); each differing pixel's cause from its trees.
+// where its radiance does (a float output's); each differing pixel's cause from its trees, traced
+// again on both sides, or `sampling` without tracing where its grids differ (grid_at).
 FrameDifference difference(const RenderedSide& a, const RenderedSide& b, bool radiance);
 
 // One pixel: its cause (none where its bytes, and with `radiance` its radiance, agree), from its

@@ -96,19 +96,32 @@ PixelTrees pixel_trees(const World& world, const PrimarySource& source, int x, i
     return out;
 }
 
-std::vector<PixelTrees> ray_traced_trees(const Scene& scene, std::optional<AccelKind> accel,
-                                         std::span<const std::uint32_t> pixels,
-                                         std::span<const std::uint8_t> refined) {
-    const World world(scene, accel);
-    const int width = scene.camera.width;
-    std::vector<PixelTrees> trees(pixels.size());
-    tbb::parallel_for(std::size_t{0}, pixels.size(), [&](std::size_t i) {
-        const std::uint32_t p = pixels[i];
-        trees[i] = pixel_trees(world, {}, static_cast<int>(p % static_cast<std::uint32_t>(width)),
-                               static_cast<int>(p / static_cast<std::uint32_t>(width)),
-                               !refined.empty() && refined[p] != 0);
-    });
-    return trees;
+namespace {
+
+class RayPixelTracer final : public PixelTracer {
+  public:
+    RayPixelTracer(const Scene& scene, std::optional<AccelKind> accel) : world_(scene, accel) {}
+
+    std::vector<PixelTrees> trees(std::span<const std::uint32_t> pixels,
+                                  std::span<const std::uint8_t> refined) const override {
+        const auto width = static_cast<std::uint32_t>(world_.camera().width());
+        std::vector<PixelTrees> out(pixels.size());
+        tbb::parallel_for(std::size_t{0}, pixels.size(), [&](std::size_t i) {
+            const std::uint32_t p = pixels[i];
+            out[i] = pixel_trees(world_, {}, static_cast<int>(p % width),
+                                 static_cast<int>(p / width), !refined.empty() && refined[p] != 0);
+        });
+        return out;
+    }
+
+  private:
+    World world_;
+};
+
+} // namespace
+
+std::unique_ptr<PixelTracer> ray_pixel_tracer(const Scene& scene, std::optional<AccelKind> accel) {
+    return std::make_unique<RayPixelTracer>(scene, accel);
 }
 
 } // namespace GLINT_PRECISION

@@ -14,6 +14,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
@@ -91,18 +92,24 @@ Divergence first_divergence(const PixelTrees& a, const PixelTrees& b);
 // is then that side's alone).
 std::vector<std::pair<int, int>> align_trees(const SampleTree& a, const SampleTree& b);
 
-// Re-traces pixels in ray mode from a scene, in the precision of the namespace, with the
-// recorder on: a World built for it, the pixels' trees as the render traces them. `refined`:
-// adaptive antialiasing's verdict per pixel of the frame (empty: none refined).
+// Traces pixels of one setting again in ray mode with the recorder on, in the precision of the
+// tracer that made it, its World built once (ray_pixel_tracer below). A frame in double precision
+// keeps one of these to give its pixels' trees.
+class PixelTracer {
+  public:
+    virtual ~PixelTracer() = default;
+    // The pixels' trees (row-major indices), as the render traces them. `refined`: adaptive
+    // antialiasing's verdict per pixel of the frame (empty: none refined).
+    virtual std::vector<PixelTrees> trees(std::span<const std::uint32_t> pixels,
+                                          std::span<const std::uint8_t> refined) const = 0;
+};
+
+// A PixelTracer for `scene`, in the namespace's precision.
 inline namespace f32 {
-std::vector<PixelTrees> ray_traced_trees(const Scene& scene, std::optional<AccelKind> accel,
-                                         std::span<const std::uint32_t> pixels,
-                                         std::span<const std::uint8_t> refined);
+std::unique_ptr<PixelTracer> ray_pixel_tracer(const Scene& scene, std::optional<AccelKind> accel);
 }
 inline namespace f64 {
-std::vector<PixelTrees> ray_traced_trees(const Scene& scene, std::optional<AccelKind> accel,
-                                         std::span<const std::uint32_t> pixels,
-                                         std::span<const std::uint8_t> refined);
+std::unique_ptr<PixelTracer> ray_pixel_tracer(const Scene& scene, std::optional<AccelKind> accel);
 }
 
 } // namespace glint
