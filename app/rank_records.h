@@ -5,9 +5,11 @@
 #pragma once
 
 #include "trace/frame_records.h"
+#include "trace/ray_tree.h"
 
 #include <cstdint>
 #include <optional>
+#include <utility>
 #include <vector>
 
 namespace glint {
@@ -39,6 +41,61 @@ template <> struct RecordFields<RankFigures> {
     }
 };
 
+// What a tradeoff run's differing pixels owe to one cause (trace/ray_tree.h).
+struct CauseError {
+    std::uint64_t pixels = 0;
+    double squared_error = 0; // Σ over its pixels and channels of the radiance difference²
+};
+template <> struct RecordFields<CauseError> {
+    template <class R, class V> static void visit(R& r, V&& v) {
+        v("pixels", r.pixels), v("squared_error", r.squared_error);
+    }
+};
+
+// A run's differing pixels by cause (frame/difference.h's tallies, without their levels).
+struct CauseFigures {
+    CauseError sampling, depth, cutoff, primary, secondary, shadow, precision;
+
+    const CauseError& at(Cause cause) const {
+        switch (cause) {
+        case Cause::sampling:
+            return sampling;
+        case Cause::depth:
+            return depth;
+        case Cause::cutoff:
+            return cutoff;
+        case Cause::primary:
+            return primary;
+        case Cause::secondary:
+            return secondary;
+        case Cause::shadow:
+            return shadow;
+        case Cause::precision:
+        case Cause::none:
+            break;
+        }
+        return precision;
+    }
+    CauseError& at(Cause cause) { return const_cast<CauseError&>(std::as_const(*this).at(cause)); }
+    double squared_error() const {
+        double sum = 0;
+        for (std::size_t c = 1; c < kCauses; ++c) sum += at(static_cast<Cause>(c)).squared_error;
+        return sum;
+    }
+    // The cause's share of the squared error (0 where there is none).
+    double share(Cause cause) const {
+        const double total = squared_error();
+        return total > 0 ? at(cause).squared_error / total : 0;
+    }
+};
+template <> struct RecordFields<CauseFigures> {
+    template <class R, class V> static void visit(R& r, V&& v) {
+        v("sampling", r.sampling), v("depth", r.depth), v("cutoff", r.cutoff);
+        v("primary", r.primary), v("secondary", r.secondary), v("shadow", r.shadow);
+        v("precision", r.precision);
+    }
+};
+
 // What `glint tradeoff` measured of one setting on a rank, sent to rank 0 for the CSV.
 struct RunFigures {
     PhaseTimes times;
@@ -51,13 +108,14 @@ struct RunFigures {
     std::optional<bool> bound_held;
     std::optional<std::uint64_t> refined;
     std::uint64_t pixels = 0;
+    CauseFigures causes; // against the run's reference
 };
 template <> struct RecordFields<RunFigures> {
     template <class R, class V> static void visit(R& r, V&& v) {
         v("times", r.times), v("rays", r.rays), v("diff", r.diff), v("agreement", r.agreement);
         v("bound_max", r.bound_max), v("bound_pixels_over_one", r.bound_pixels_over_one);
         v("largest_omitted_weight", r.largest_omitted_weight), v("bound_held", r.bound_held);
-        v("refined", r.refined), v("pixels", r.pixels);
+        v("refined", r.refined), v("pixels", r.pixels), v("causes", r.causes);
     }
 };
 
@@ -67,7 +125,9 @@ struct PixelColour {
     float r = 0, g = 0, b = 0;
 };
 template <> struct RecordFields<PixelColour> {
-    template <class R, class V> static void visit(R& p, V&& v) { v("r", p.r), v("g", p.g), v("b", p.b); }
+    template <class R, class V> static void visit(R& p, V&& v) {
+        v("r", p.r), v("g", p.g), v("b", p.b);
+    }
 };
 struct PixelFacts {
     PixelColour radiance;

@@ -4,11 +4,13 @@
 #pragma once
 
 #include "app/rank_records.h"
+#include "frame/difference.h"
 #include "frame/frame.h"
 #include "trace/cutoff.h"
 #include "trace/image_metrics.h"
 
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -93,6 +95,9 @@ struct Run {
     std::optional<double> agreement;      // against the reference's ids; not for enlarged runs
     std::optional<std::uint64_t> refined; // adaptive antialiasing: pixels that took the grid
     std::uint64_t pixels = 0;             // of the image rendered
+    CauseFigures causes;                  // why its pixels differ from the reference's
+    // The fastest run of an error budget: the stem of its heat and cause map thumbnails.
+    std::string thumbnails;
 
     // Per frame (PhaseTimes::per_frame). Subtracting the GL set-up whole, hidden or not, once made
     // tree-3's frame take −0.0001 s, which gnuplot's log axis crashed on (a segmentation fault
@@ -116,6 +121,35 @@ struct SceneResult {
 // The trace-only knobs (depth, cut-off, structure, size, precision) are swept in ray mode so
 // that nothing else changes the image. Keyed by label: a setting reached by two knobs runs once.
 std::vector<std::pair<std::string, Setting>> sweep(const Scene& scene, int samples);
+
+// The scene as `s` renders it, at the scene's full size (a smaller run is enlarged to it).
+Side side_of(const Scene& scene, const Setting& s, const TradeoffArgs& args);
+
+// Why the run's pixels differ from its reference's (the exact image, or the uniform 8×8 one):
+// its frame wrapped as a side of the comparison (frame/difference.h), then given back to it.
+FrameDifference why_it_differs(const Scene& scene, const RenderedSide& reference, Run& run,
+                               const TradeoffArgs& args,
+                               const std::shared_ptr<const SceneGeometry>& geometry);
+
+// The tallies a run keeps (and MPI ranks send): pixels and squared error per cause.
+CauseFigures cause_figures(const FrameDifference& d);
+
+// The heat and cause map thumbnails of each error budget's fastest run (against the exact image),
+// written to `out` as <scene>-<budget>-heat.png and -causes.png and named in the run
+// (Run::thumbnails). A run measured on another rank is rendered again for them.
+void budget_thumbnails(SceneResult& sr, const RenderedSide& exact, const TradeoffArgs& args,
+                       const std::shared_ptr<const SceneGeometry>& geometry, const fs::path& out);
+
+// An error budget of the summary: its name and the runs within it.
+struct Budget {
+    std::string name; // "PSNR ≥ 40 dB"
+    std::string slug; // for file names: "psnr-40"
+    std::function<bool(const Run&)> within;
+};
+// The summary's error budgets, against the exact image.
+std::vector<Budget> error_budgets();
+// The fastest run within a budget, if any.
+const Run* fastest(const std::vector<Run>& runs, const std::function<bool(const Run&)>& within);
 
 // One render of `scene` with `s`; the images are deterministic, so only times differ per repeat.
 // `geometry`: the scene's meshes and materials, prepared once for the whole sweep.

@@ -52,7 +52,8 @@ std::vector<SceneResult> prepare(const TradeoffArgs& args) {
     for (const fs::path& path : scene_paths(args)) {
         ModelOptions model;
         if (!args.size.empty()) model.size = parse_size(args.size, "--size");
-        SceneResult sr{path.stem().string(), path, load_scene_with_notes(path, model), {}, {}, 0, 0};
+        SceneResult sr{
+            path.stem().string(), path, load_scene_with_notes(path, model), {}, {}, 0, 0};
         // The exact image, its float twin and the run being measured are alive together, and
         // the antialiasing runs draw an item buffer of --samples² samples a pixel.
         Scene sampled = sr.scene;
@@ -93,7 +94,9 @@ int run_tradeoff(const TradeoffArgs& args) {
         deep_ray.mode = Mode::ray;
         deep_ray.threads = args.threads;
         deep_ray.precision = Precision::f64;
-        const Frame reference = render_frame(deep, std::nullopt, deep_ray);
+        // Kept as a side of each run's comparison, whose differing pixels it traces again.
+        const RenderedSide exact({"exact", deep, std::nullopt, deep_ray});
+        const Frame& reference = exact.frame();
         sr.reference_seconds = reference.times.total();
         sr.reference_bound = cutoff_bound(deep, reference.result);
         deep_ray.precision = Precision::f32;
@@ -106,8 +109,10 @@ int run_tradeoff(const TradeoffArgs& args) {
         grid_setting.max_depth = scene.render.max_depth;
         grid_setting.min_reflectivity = scene.render.min_reflectivity;
         grid_setting.samples = kGridReference;
-        const Run grid = render_once(scene, grid_setting, args, geometry);
-        sr.grid_seconds = grid.total_seconds();
+        Run grid_run = render_once(scene, grid_setting, args, geometry);
+        sr.grid_seconds = grid_run.total_seconds();
+        const RenderedSide grid(side_of(scene, grid_setting, args), std::move(grid_run.frame),
+                                geometry);
 
         // The settings, each label once (a label several sweeps reach gathers their knobs); on
         // MPI ranks, setting k is measured by rank k mod ranks and its figures sent to rank 0.
@@ -133,8 +138,9 @@ int run_tradeoff(const TradeoffArgs& args) {
             const Setting& setting = sr.runs[k].setting;
             Run run = measure(scene, setting, args, geometry);
             const RenderResult& result = run.frame.result;
-            run.diff = compare_results(
-                setting.against_grid ? grid.frame.result : reference.result, result);
+            const RenderedSide& against = setting.against_grid ? grid : exact;
+            run.diff = compare_results(against.frame().result, result);
+            run.causes = cause_figures(why_it_differs(scene, against, run, args, geometry));
             if (setting.divisor == 1 && !setting.against_grid)
                 run.agreement = id_agreement(reference.result.ids, result.ids);
             if (setting.frame.precision == Precision::f32 && setting.frame.mode == Mode::ray &&
@@ -173,6 +179,7 @@ int run_tradeoff(const TradeoffArgs& args) {
                             run.frame_seconds(), psnr_text(run.diff.psnr_db).c_str(),
                             run.diff.max_abs_error);
         }
+        if (rank() == 0) budget_thumbnails(sr, exact, args, geometry, out);
         // Two plots: the knobs against the exact image, and antialiasing against 8×8.
         std::vector<Run> exact_runs, grid_runs;
         for (Run& r : sr.runs) (r.setting.against_grid ? grid_runs : exact_runs).push_back(r);

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <ctime>
 #include <functional>
+#include <map>
 #include <sstream>
 
 namespace glint {
@@ -50,7 +51,50 @@ void gnuplot(const std::string& script) {
     if (pclose(pipe) != 0) throw std::runtime_error("gnuplot failed on the plot script");
 }
 
-// The fastest run within an error budget, if any.
+// Per knob, which cause its runs' error owes most to (docs/TRADEOFF.md, "Why a pixel differs"):
+// the squared radiance error of every run the knob reached, against the exact image, summed by
+// cause.
+std::string knob_causes(const std::vector<Run>& runs) {
+    std::vector<std::string> knobs;
+    std::map<std::string, CauseFigures> sums;
+    for (const Run& r : runs) {
+        if (r.setting.against_grid) continue;
+        std::istringstream names(r.knobs);
+        for (std::string knob; std::getline(names, knob, '+');) {
+            if (!sums.count(knob)) knobs.push_back(knob);
+            CauseFigures& sum = sums[knob];
+            for (std::size_t c = 1; c < kCauses; ++c) {
+                const auto cause = static_cast<Cause>(c);
+                sum.at(cause).pixels += r.causes.at(cause).pixels;
+                sum.at(cause).squared_error += r.causes.at(cause).squared_error;
+            }
+        }
+    }
+    std::ostringstream md;
+    md << "| knob | differing pixels (all its runs) | the error is mostly |\n|---|---:|---|\n";
+    for (const std::string& knob : knobs) {
+        const CauseFigures& sum = sums[knob];
+        std::uint64_t pixels = 0;
+        Cause top = Cause::none;
+        for (std::size_t c = 1; c < kCauses; ++c) {
+            const auto cause = static_cast<Cause>(c);
+            pixels += sum.at(cause).pixels;
+            if (sum.at(cause).squared_error > 0 &&
+                (top == Cause::none || sum.at(cause).squared_error > sum.at(top).squared_error))
+                top = cause;
+        }
+        md << "| " << knob << " | " << pixels << " | ";
+        if (top == Cause::none)
+            md << (pixels > 0 ? "below a byte's error" : "no pixel differs");
+        else
+            md << name_of(top) << format(" (%.0f%%)", 100 * sum.share(top));
+        md << " |\n";
+    }
+    return md.str() + "\n";
+}
+
+} // namespace
+
 const Run* fastest(const std::vector<Run>& runs, const std::function<bool(const Run&)>& within) {
     const Run* best = nullptr;
     for (const Run& r : runs)
@@ -58,7 +102,16 @@ const Run* fastest(const std::vector<Run>& runs, const std::function<bool(const 
     return best;
 }
 
-} // namespace
+std::vector<Budget> error_budgets() {
+    // Against the exact image: the antialiasing runs have their own table.
+    const auto exact = [](const Run& r) { return !r.setting.against_grid; };
+    return {
+        {"PSNR ≥ 40 dB", "psnr-40", [=](const Run& r) { return exact(r) && r.diff.psnr_db >= 40; }},
+        {"PSNR ≥ 50 dB", "psnr-50", [=](const Run& r) { return exact(r) && r.diff.psnr_db >= 50; }},
+        {"every pixel within 1/255", "within-1",
+         [=](const Run& r) { return exact(r) && r.diff.max_abs_error <= 1; }},
+        {"exact", "exact", [=](const Run& r) { return exact(r) && r.diff.max_abs_error == 0; }}};
+}
 
 std::string psnr_text(double psnr) {
     return std::isinf(psnr) ? "exact" : format("%.1f", psnr);
@@ -123,7 +176,8 @@ void write_csv(const std::vector<SceneResult>& results, const fs::path& path) {
            "seconds_shading,psnr_db,max_abs_error_255,fraction_over_1_255,id_agreement,"
            "rays_primary,rays_shadow,rays_reflection,rays_transmission,cutoff_bound_255,cutoff_"
            "bound_held,pareto,samples,antialias,aa_threshold,refined_pixels,reference,"
-           "fraction_over_2_255,rmse_radiance,max_error_radiance\n";
+           "fraction_over_2_255,rmse_radiance,max_error_radiance,differing_pixels,share_sampling,"
+           "share_depth,share_cutoff,share_primary,share_secondary,share_shadow,share_precision\n";
     for (const SceneResult& sr : results) {
         const std::vector<std::size_t> front = pareto_front(sr.runs);
         for (std::size_t i = 0; i < sr.runs.size(); ++i) {
@@ -149,9 +203,16 @@ void write_csv(const std::vector<SceneResult>& results, const fs::path& path) {
                 << r.bound.max << ',' << (r.bound_held ? (*r.bound_held ? "yes" : "no") : "") << ','
                 << (std::find(front.begin(), front.end(), i) != front.end() ? "yes" : "") << ','
                 << s.samples << ',' << name_of(s.antialias) << ',' << s.aa_threshold << ','
-                << r.refined.value_or(0) << ',' << (s.against_grid ? "uniform 8x8" : "exact")
-                << ',' << r.diff.fraction_over_two << ',' << format("%.6g", r.diff.rmse) << ','
-                << format("%.6g", r.diff.max_radiance_error) << '\n';
+                << r.refined.value_or(0) << ',' << (s.against_grid ? "uniform 8x8" : "exact") << ','
+                << r.diff.fraction_over_two << ',' << format("%.6g", r.diff.rmse) << ','
+                << format("%.6g", r.diff.max_radiance_error);
+            std::uint64_t differing = 0;
+            for (std::size_t c = 1; c < kCauses; ++c)
+                differing += r.causes.at(static_cast<Cause>(c)).pixels;
+            csv << ',' << differing;
+            for (std::size_t c = 1; c < kCauses; ++c)
+                csv << ',' << format("%.6g", r.causes.share(static_cast<Cause>(c)));
+            csv << '\n';
         }
     }
     write_file_atomically(path, csv.str());
@@ -196,25 +257,27 @@ std::string markdown(const std::vector<SceneResult>& results, const TradeoffArgs
            << (plots / (sr.name + ".svg")).generic_string() << ")\n\n"
            << "The exact image took " << format("%.3f", sr.reference_seconds)
            << " s; its own cut-off bound is " << sr.reference_bound.max << "/255.\n\n"
-           << "| error budget | fastest setting | frame time (s) | PSNR (dB) | max error |\n"
-           << "|---|---|---:|---:|---:|\n";
-        // Against the exact image: the antialiasing runs have their own table below.
-        const auto exact = [](const Run& r) { return !r.setting.against_grid; };
-        const std::vector<std::pair<std::string, std::function<bool(const Run&)>>> budgets = {
-            {"PSNR ≥ 40 dB", [&](const Run& r) { return exact(r) && r.diff.psnr_db >= 40; }},
-            {"PSNR ≥ 50 dB", [&](const Run& r) { return exact(r) && r.diff.psnr_db >= 50; }},
-            {"every pixel within 1/255",
-             [&](const Run& r) { return exact(r) && r.diff.max_abs_error <= 1; }},
-            {"exact", [&](const Run& r) { return exact(r) && r.diff.max_abs_error == 0; }}};
-        for (const auto& [budget, within] : budgets) {
-            const Run* r = fastest(sr.runs, within);
-            if (!r)
-                md << "| " << budget << " | none of the runs | | | |\n";
+           << "| error budget | fastest setting | frame time (s) | PSNR (dB) | max error | where "
+              "it errs: heat, causes |\n"
+           << "|---|---|---:|---:|---:|---|\n";
+        for (const Budget& budget : error_budgets()) {
+            const Run* r = fastest(sr.runs, budget.within);
+            if (!r) {
+                md << "| " << budget.name << " | none of the runs | | | | |\n";
+                continue;
+            }
+            md << "| " << budget.name << " | " << r->label << " | "
+               << format("%.4f", r->frame_seconds()) << " | " << psnr_text(r->diff.psnr_db) << " | "
+               << r->diff.max_abs_error << "/255 | ";
+            if (!r->thumbnails.empty())
+                md << "![heat](" << (plots / (r->thumbnails + "-heat.png")).generic_string()
+                   << ") ![causes](" << (plots / (r->thumbnails + "-causes.png")).generic_string()
+                   << ")";
             else
-                md << "| " << budget << " | " << r->label << " | "
-                   << format("%.4f", r->frame_seconds()) << " | " << psnr_text(r->diff.psnr_db)
-                   << " | " << r->diff.max_abs_error << "/255 |\n";
+                md << "identical";
+            md << " |\n";
         }
+        md << "\n" << knob_causes(sr.runs);
         md << "\n### Antialiasing\n\n"
            << "Against the uniform " << kGridReference << "×" << kGridReference
            << " image of the default setting (ray traced, " << format("%.3f", sr.grid_seconds)

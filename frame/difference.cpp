@@ -76,6 +76,7 @@ RenderedSide::RenderedSide(RenderedSide&&) noexcept = default;
 
 std::vector<PixelTrees> RenderedSide::trees(std::span<const std::uint32_t> pixels) const {
     const std::vector<std::uint8_t>& refined = frame_.result.refined;
+    if (pixels.empty()) return {};
     if (tracer_) return tracer_->trees(pixels, refined);
     if (!world_) throw std::logic_error("a resampled frame's pixels are not traced again");
     const PrimarySource source = primary_source(frame_, side_.frame.resolve);

@@ -256,4 +256,29 @@ Image cause_map(const FrameDifference& d, const Image& a) {
     return image;
 }
 
+MapThumbnails map_thumbnails(const FrameDifference& d, const Image& a, int width) {
+    const int factor = std::max(1, (d.width + width - 1) / std::max(1, width));
+    FrameDifference small = d; // the tallies (the legend's counts) and the error's range
+    small.width = std::max(1, d.width / factor), small.height = std::max(1, d.height / factor);
+    const auto pixels = static_cast<std::size_t>(small.width) * small.height;
+    small.causes.assign(pixels, Cause::none);
+    small.error.assign(pixels, 0.0f);
+    Image small_a(small.width, small.height);
+    for (int y = 0; y < small.height; ++y)
+        for (int x = 0; x < small.width; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y) * small.width + x;
+            std::array<int, kCauses> votes{};
+            for (int v = y * factor; v < std::min(d.height, (y + 1) * factor); ++v)
+                for (int u = x * factor; u < std::min(d.width, (x + 1) * factor); ++u) {
+                    const std::size_t p = static_cast<std::size_t>(v) * d.width + u;
+                    small.error[i] = std::max(small.error[i], d.error[p]);
+                    ++votes[static_cast<std::size_t>(d.causes[p])];
+                }
+            const auto most = std::max_element(votes.begin() + 1, votes.end());
+            if (*most > 0) small.causes[i] = static_cast<Cause>(most - votes.begin());
+            std::copy_n(a.pixel(x * factor, y * factor), 3, small_a.pixel(x, y));
+        }
+    return {heat_map(small), cause_map(small, small_a)};
+}
+
 } // namespace glint

@@ -33,6 +33,15 @@ Image heat_map(const FrameDifference& d);
 // cause that occurs with its colour, name and pixel count.
 Image cause_map(const FrameDifference& d, const Image& a);
 
+// Both maps at most `width` pixels wide, for a summary: the difference shrunk by a whole factor
+// (each block's largest error, and its most frequent cause where any pixel of it differs; A's
+// image by its blocks' first pixel), then mapped with legends of their own size (the pixel
+// counts stay the full image's).
+struct MapThumbnails {
+    Image heat, causes;
+};
+MapThumbnails map_thumbnails(const FrameDifference& d, const Image& a, int width);
+
 // The height of the legend strip a map of this width gets below its image.
 int legend_height(int width, int lines);
 

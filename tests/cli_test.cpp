@@ -232,6 +232,20 @@ TEST(Cli, TradeoffWritesTheCsvAPlotPerSceneAndTheSummary) {
         if (byte_error > 1) {
             EXPECT_GT(largest, (byte_error - 1) / 255.0) << line;
         }
+        // Why it differs (docs/TRADEOFF.md, "Why a pixel differs"): pixels wherever bytes do,
+        // and the causes' shares summing to 1 wherever the radiance does.
+        const unsigned long differing = std::stoul(row[column("differing_pixels")]);
+        EXPECT_EQ(differing > 0, byte_error > 0) << line;
+        double shares = 0;
+        for (const char* cause :
+             {"sampling", "depth", "cutoff", "primary", "secondary", "shadow", "precision"})
+            shares += std::stod(row[column(std::string("share_") + cause)]);
+        if (differing > 0) {
+            EXPECT_NEAR(shares, 1.0, 1e-4) << line;
+        }
+        if (row[column("divisor")] != "1" && differing > 0) {
+            EXPECT_EQ(std::stod(row[column("share_sampling")]), 1.0) << line; // enlarged
+        }
         const unsigned long n = std::stoul(row[column("samples")]);
         const unsigned long primary = std::stoul(row[column("rays_primary")]);
         if (row[column("antialias")] == "adaptive") {
@@ -258,6 +272,10 @@ TEST(Cli, TradeoffWritesTheCsvAPlotPerSceneAndTheSummary) {
     const std::string summary = slurp(dir / "sweep" / "summary.md");
     EXPECT_NE(summary.find("## default (40×30, 10 objects)"), std::string::npos) << summary;
     EXPECT_NE(summary.find("| PSNR ≥ 40 dB |"), std::string::npos) << summary;
+    // Each knob's dominant cause, and the maps of the fastest setting within 40 dB.
+    EXPECT_NE(summary.find("| max_depth | "), std::string::npos) << summary;
+    EXPECT_NE(summary.find("](./default-psnr-40-causes.png)"), std::string::npos) << summary;
+    EXPECT_GT(read_png(dir / "sweep" / "default-psnr-40-heat.png").width, 0);
     EXPECT_NE(summary.find("](./default.svg)"), std::string::npos) << summary;
     EXPECT_NE(summary.find("](./default-antialiasing.svg)"), std::string::npos) << summary;
     EXPECT_NE(summary.find("| hybrid auto tess 32 4x4 adaptive 0.02 |"), std::string::npos)
