@@ -44,6 +44,10 @@ class RenderedSide {
     // A frame rendered already with the side's settings (`glint tradeoff` measures its runs
     // first); `geometry`: the scene's, prepared already (float), or null.
     RenderedSide(Side side, Frame frame, const std::shared_ptr<const SceneGeometry>& geometry);
+    // Traced here on a World prepared already for the side's scene (float) and, in hybrid mode,
+    // the item buffer drawn for it elsewhere (the preview draws with its window's GL; no GL
+    // context is made here, so this may run beside one on another thread).
+    RenderedSide(Side side, std::shared_ptr<const World> world, std::shared_ptr<const IdImage> ids);
     ~RenderedSide();
     RenderedSide(RenderedSide&&) noexcept;
 
@@ -51,14 +55,17 @@ class RenderedSide {
     const Frame& frame() const { return frame_; }
     // Gives the frame back (the side can trace no pixel after).
     Frame take_frame() && { return std::move(frame_); }
-    // The pixels' trees (row-major indices into the frame), as the frame traced them.
-    std::vector<PixelTrees> trees(std::span<const std::uint32_t> pixels) const;
+    // The pixels' trees (row-major indices into the frame), as the frame traced them; `depths`:
+    // per pixel, a maximum depth below the side's to trace it to (empty: the side's).
+    std::vector<PixelTrees> trees(std::span<const std::uint32_t> pixels,
+                                  std::span<const int> depths = {}) const;
     // The samples pixel p took a side: N (its N×N grid), 1 (its centre), 0 (resampled).
     int grid_at(std::uint32_t p) const;
 
   private:
     Side side_;
-    std::unique_ptr<World> world_;        // float precision
+    std::shared_ptr<const World> world_;  // float precision
+    std::shared_ptr<const IdImage> ids_;  // an item buffer drawn elsewhere, if any
     std::unique_ptr<PixelTracer> tracer_; // double precision
     Frame frame_;
 };

@@ -50,35 +50,6 @@ std::string rgb_text(DVec3 c) {
     return out + ")";
 }
 
-const char* stop_name(Stop stop) {
-    switch (stop) {
-    case Stop::max_depth:
-        return "max_depth";
-    case Stop::min_weight:
-        return "min_weight";
-    case Stop::tree_budget:
-        return "tree_budget";
-    case Stop::cast:
-    case Stop::none:
-        break;
-    }
-    return "";
-}
-
-const char* verdict_name(Verdict v) {
-    switch (v) {
-    case Verdict::behind:
-        return "behind";
-    case Verdict::blocked:
-        return "blocked";
-    case Verdict::lit:
-        return "lit";
-    case Verdict::through_glass:
-        break;
-    }
-    return "glass";
-}
-
 // A row of the side-by-side table: one aligned pair of nodes.
 struct Row {
     std::string path; // "P", "P.R", "P.R.T": the primary ray, then reflected R and transmitted T
@@ -148,12 +119,12 @@ std::string node_text(const Scene& scene, const SampleTree& tree, int index) {
             text.append(" \"").append(scene.object_names[n.object]).append("\"");
         std::string lights;
         for (const Verdict v : n.lights)
-            lights.append(lights.empty() ? "" : ",").append(verdict_name(v));
+            lights.append(lights.empty() ? "" : ",").append(name_of(v));
         if (!lights.empty()) text.append(" [").append(lights).append("]");
     }
     for (std::size_t k = 0; k < 2; ++k)
         if (n.stop[k] != Stop::cast && n.stop[k] != Stop::none)
-            text += std::string(k ? " T:" : " R:") + stop_name(n.stop[k]);
+            text.append(k ? " T:" : " R:").append(name_of(n.stop[k]));
     return text;
 }
 
@@ -251,11 +222,11 @@ std::string against_json(const RenderedSide& a, const RenderedSide& b, const Pix
         if (index < 0) return nullptr;
         const TreeNode& n = tree[static_cast<std::size_t>(index)];
         json lights = json::array();
-        for (const Verdict v : n.lights) lights.push_back(verdict_name(v));
+        for (const Verdict v : n.lights) lights.push_back(std::string(name_of(v)));
         json stops = json::object();
         for (std::size_t k = 0; k < 2; ++k)
             if (n.stop[k] != Stop::cast && n.stop[k] != Stop::none)
-                stops[k ? "transmission" : "reflection"] = stop_name(n.stop[k]);
+                stops[k ? "transmission" : "reflection"] = std::string(name_of(n.stop[k]));
         return {{"kind", std::string(name_of(n.kind))},
                 {"depth", n.depth},
                 {"object", n.object == kNoObject ? json(nullptr) : json(n.object)},

@@ -2,6 +2,7 @@
 // hit, so a trusted coarse item buffer against ray mode differs by `primary` only, and
 // `explain --against` names the cause the map shows with hybrid sides too (their trees come from
 // the frame's own item buffer). Ray-mode sides: difference_test.cpp.
+#include "difference_shared.h"
 #include "frame/difference_maps.h"
 #include "frame/explain_against.h"
 #include "io/load_scene.h"
@@ -67,11 +68,7 @@ TEST(DifferenceHybrid, ExplainAgainstAgreesWithTheCauseMap) {
         for (const auto& [side_a, side_b] : pairs) {
             const RenderedSide a(side_a), b(side_b);
             const FrameDifference d = difference(a, b, false);
-            std::vector<std::uint32_t> pixels;
-            for (std::uint32_t p = 0; p < d.causes.size() && pixels.size() < 150; ++p)
-                if (d.causes[p] != Cause::none) pixels.push_back(p);
-            for (std::uint32_t p = 0; p < d.causes.size() && pixels.size() < 200; p += 3)
-                if (d.causes[p] == Cause::none) pixels.push_back(p);
+            const std::vector<std::uint32_t> pixels = testing::pixels_to_check(d);
             const auto ta = a.trees(pixels), tb = b.trees(pixels);
             for (std::size_t i = 0; i < pixels.size(); ++i) {
                 const int x = static_cast<int>(pixels[i] % 64),

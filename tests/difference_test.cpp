@@ -2,6 +2,7 @@
 // pixel's cause is the first place its two ray trees part (DESIGN §13), a setting against itself
 // differs nowhere, the tallies add up, and `explain --against` names the cause the map shows.
 // Ray mode here (every tree and rule without GL); the hybrid sides are in item_buffer_test.cpp.
+#include "difference_shared.h"
 #include "frame/difference_maps.h"
 #include "frame/explain_against.h"
 #include "io/error.h"
@@ -173,11 +174,7 @@ TEST(Difference, ExplainAgainstAgreesWithTheCauseMap) {
         for (const auto& [side_a, side_b] : pairs) {
             const RenderedSide a(side_a), b(side_b);
             const FrameDifference d = difference(a, b, false);
-            std::vector<std::uint32_t> pixels;
-            for (std::uint32_t p = 0; p < d.causes.size() && pixels.size() < 150; ++p)
-                if (d.causes[p] != Cause::none) pixels.push_back(p);
-            for (std::uint32_t p = 0; p < d.causes.size() && pixels.size() < 200; p += 3)
-                if (d.causes[p] == Cause::none) pixels.push_back(p);
+            const std::vector<std::uint32_t> pixels = testing::pixels_to_check(d);
             ASSERT_EQ(pixels.size(), 200u) << name;
             const auto ta = a.trees(pixels), tb = b.trees(pixels);
             for (std::size_t i = 0; i < pixels.size(); ++i) {

@@ -4,10 +4,10 @@
 // writes. docs/EXPLAIN.md shows it at work.
 #pragma once
 
-#include "trace/render_result.h"
 #include "trace/primary_hits.h"
 #include "trace/ray_tree.h"
 #include "trace/recorder.h"
+#include "trace/render_result.h"
 
 #include <array>
 #include <optional>
@@ -61,6 +61,16 @@ PixelExplanation explain_pixel(const World& world, const PrimarySource& source, 
 // the grid's N² samples where the pixel takes its grid, else its centre's one. `refined` as above.
 PixelTrees pixel_trees(const World& world, const PrimarySource& source, int x, int y,
                        bool refined = false);
+
+// pixel_trees for many pixels (row-major indices) of `world`, made from `scene`, in parallel.
+// `refined`: adaptive antialiasing's verdict per pixel of the frame (empty: none). `depths`:
+// per pixel, a maximum depth below the scene's to trace it to (empty: the scene's), each on a
+// World of the scene with that depth that shares `world`'s geometry.
+std::vector<PixelTrees> many_pixel_trees(const Scene& scene, const World& world,
+                                         const PrimarySource& source,
+                                         std::span<const std::uint32_t> pixels,
+                                         std::span<const std::uint8_t> refined,
+                                         std::span<const int> depths);
 
 } // namespace GLINT_PRECISION
 } // namespace glint

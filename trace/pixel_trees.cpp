@@ -7,6 +7,9 @@
 
 #include <tbb/parallel_for.h>
 
+#include <map>
+#include <memory>
+
 namespace glint {
 inline namespace GLINT_PRECISION {
 
@@ -96,25 +99,46 @@ PixelTrees pixel_trees(const World& world, const PrimarySource& source, int x, i
     return out;
 }
 
+std::vector<PixelTrees> many_pixel_trees(const Scene& scene, const World& world,
+                                         const PrimarySource& source,
+                                         std::span<const std::uint32_t> pixels,
+                                         std::span<const std::uint8_t> refined,
+                                         std::span<const int> depths) {
+    // A World a depth: the scene's own, and one for each lower depth asked for.
+    const int own = world.settings().max_depth;
+    std::map<int, std::unique_ptr<World>> capped;
+    for (const int depth : depths)
+        if (depth < own && !capped.count(depth)) {
+            Scene copy = scene;
+            copy.render.max_depth = depth;
+            capped[depth] = std::make_unique<World>(copy, world);
+        }
+    const auto width = static_cast<std::uint32_t>(world.camera().width());
+    std::vector<PixelTrees> out(pixels.size());
+    tbb::parallel_for(std::size_t{0}, pixels.size(), [&](std::size_t i) {
+        const std::uint32_t p = pixels[i];
+        const World& w = !depths.empty() && depths[i] < own ? *capped.at(depths[i]) : world;
+        out[i] = pixel_trees(w, source, static_cast<int>(p % width), static_cast<int>(p / width),
+                             !refined.empty() && refined[p] != 0);
+    });
+    return out;
+}
+
 namespace {
 
 class RayPixelTracer final : public PixelTracer {
   public:
-    RayPixelTracer(const Scene& scene, std::optional<AccelKind> accel) : world_(scene, accel) {}
+    RayPixelTracer(const Scene& scene, std::optional<AccelKind> accel)
+        : scene_(scene), world_(scene, accel) {}
 
     std::vector<PixelTrees> trees(std::span<const std::uint32_t> pixels,
-                                  std::span<const std::uint8_t> refined) const override {
-        const auto width = static_cast<std::uint32_t>(world_.camera().width());
-        std::vector<PixelTrees> out(pixels.size());
-        tbb::parallel_for(std::size_t{0}, pixels.size(), [&](std::size_t i) {
-            const std::uint32_t p = pixels[i];
-            out[i] = pixel_trees(world_, {}, static_cast<int>(p % width),
-                                 static_cast<int>(p / width), !refined.empty() && refined[p] != 0);
-        });
-        return out;
+                                  std::span<const std::uint8_t> refined,
+                                  std::span<const int> depths) const override {
+        return many_pixel_trees(scene_, world_, {}, pixels, refined, depths);
     }
 
   private:
+    Scene scene_;
     World world_;
 };
 

@@ -1,5 +1,7 @@
 #include "trace/ray_tree.h"
 
+#include <algorithm>
+
 namespace glint {
 
 namespace {
@@ -53,6 +55,13 @@ struct Walk {
 };
 
 } // namespace
+
+int deepest(const PixelTrees& trees) {
+    int depth = 0;
+    for (const SampleTree& tree : trees.samples)
+        for (const TreeNode& node : tree) depth = std::max(depth, node.depth);
+    return depth;
+}
 
 Divergence first_divergence(const PixelTrees& a, const PixelTrees& b) {
     if (a.grid != b.grid || a.samples.size() != b.samples.size())

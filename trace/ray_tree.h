@@ -40,11 +40,21 @@ template <> struct EnumNames<Cause> {
                                              "secondary", "shadow", "precision");
 };
 
-// Why a reflected or transmitted ray was not cast (OmittedRay::Why), or `cast`.
+// Why a reflected or transmitted ray was not cast (OmittedRay::Why), or `cast`; `none`: the
+// material has no such ray.
 enum class Stop : std::uint8_t { cast, max_depth, min_weight, tree_budget, none };
+
+template <> struct EnumNames<Stop> {
+    static constexpr auto names =
+        name_table("cast", "max_depth", "min_weight", "tree_budget", "none");
+};
 
 // One light at a node, as the verdict the cause rule compares.
 enum class Verdict : std::uint8_t { behind, blocked, lit, through_glass };
+
+template <> struct EnumNames<Verdict> {
+    static constexpr auto names = name_table("behind", "blocked", "lit", "glass");
+};
 
 // One node of a ray tree: a primary, reflected or transmitted ray.
 struct TreeNode {
@@ -73,6 +83,9 @@ struct PixelTrees {
     std::array<std::uint8_t, 3> bytes{}; // what the PNG holds there
 };
 
+// The deepest node of a pixel's trees.
+int deepest(const PixelTrees& trees);
+
 // Where two pixels' trees part.
 struct Divergence {
     Cause cause = Cause::none;
@@ -84,7 +97,9 @@ struct Divergence {
 
 // The first place, in DESIGN §13's order, where `a` and `b` part: sampling when their grids
 // differ, else the first sample whose trees part, else precision. Call it for a pixel that
-// differs; the trees themselves cannot say whether the bytes do.
+// differs; the trees themselves cannot say whether the bytes do. One side's trees may be
+// traced only to one level below the other's deepest node (frame/difference.cpp says why the
+// walk then finds what it finds on the whole trees).
 Divergence first_divergence(const PixelTrees& a, const PixelTrees& b);
 
 // The nodes of two trees laid side by side, in the walk's order: pairs of node indices, -1 where
@@ -99,9 +114,11 @@ class PixelTracer {
   public:
     virtual ~PixelTracer() = default;
     // The pixels' trees (row-major indices), as the render traces them. `refined`: adaptive
-    // antialiasing's verdict per pixel of the frame (empty: none refined).
+    // antialiasing's verdict per pixel of the frame (empty: none refined). `depths`: per pixel,
+    // a maximum depth below the scene's to trace it to (empty: the scene's).
     virtual std::vector<PixelTrees> trees(std::span<const std::uint32_t> pixels,
-                                          std::span<const std::uint8_t> refined) const = 0;
+                                          std::span<const std::uint8_t> refined,
+                                          std::span<const int> depths) const = 0;
 };
 
 // A PixelTracer for `scene`, in the namespace's precision.
