@@ -77,12 +77,77 @@ std::string Preview::describe_settings() const {
     text += ", " + (world_   ? std::string(name_of(world_->accelerator().kind()))
                     : accel_ ? std::string(name_of(*accel_))
                              : std::string("auto"));
-    return text + ", view " + std::string(name_of(view_));
+    text += ", view " + std::string(name_of(view_));
+    if (reference_) text += ", against " + reference_->label;
+    return text;
+}
+
+bool Preview::compares() const {
+    return reference_.has_value() || view_ == View::heat || view_ == View::causes;
+}
+
+bool Preview::from_refiner() const {
+    return is_traced(view_) && !(reference_ && view_ == View::difference);
+}
+
+const Image* Preview::compared_view() const {
+    if (!comparison_ || !comparison_->ready() || !comparison_->error().empty()) return nullptr;
+    if (view_ == View::heat) return &comparison_->heat();
+    if (view_ == View::causes) return &comparison_->causes();
+    if (view_ == View::difference && reference_) return &comparison_->differing();
+    return nullptr;
+}
+
+void Preview::retire_comparison() {
+    if (comparison_ && !comparison_->ready()) retired_.push_back(std::move(comparison_));
+    comparison_.reset();
+    comparison_shown_ = false;
+}
+
+// The live scene as the window traces it, and the reference on the same camera: exact (depth
+// kMaxDepth, no cut-off, double; the live sampling), or the settings taken. A hybrid reference
+// gets its item buffer here, from the window's GL.
+void Preview::start_comparison() {
+    retire_comparison();
+    Scene scene = scene_;
+    scene.camera = camera_.camera();
+    Side live{"the view's settings", scene, accel_, frame_};
+    Side reference;
+    if (reference_) {
+        reference = *reference_;
+        reference.scene.camera = scene.camera;
+    } else { // the heat and cause maps' default
+        reference.label = "exact";
+        reference.scene = scene;
+        make_exact(reference);
+    }
+    if (reference.label == "exact") {
+        reference.scene.render.samples = scene.render.samples;
+        reference.scene.render.antialias = scene.render.antialias;
+        reference.scene.render.aa_threshold = scene.render.aa_threshold;
+    }
+    std::shared_ptr<const IdImage> reference_ids;
+    if (reference.frame.mode == Mode::hybrid) {
+        const auto drawn_as = std::pair{reference.frame.raster, reference.frame.tessellation};
+        if (drawn_as == std::pair{frame_.raster, frame_.tessellation}) {
+            reference_ids = ids_;
+        } else {
+            if (reference_uploaded_ != drawn_as)
+                reference_items_.upload(*world_, drawn_as.first, drawn_as.second);
+            reference_uploaded_ = drawn_as;
+            ItemBufferResult drawn = reference_items_.draw(*world_);
+            bin_objects(*world_, drawn.ids);
+            reference_ids = std::make_shared<const IdImage>(std::move(drawn.ids));
+        }
+    }
+    comparison_ = std::make_shared<ReferenceComparison>(ReferenceComparison::Input{
+        std::move(live), world_, frame_.mode == Mode::hybrid ? ids_ : nullptr, std::move(reference),
+        std::move(reference_ids)});
 }
 
 void Preview::set(const std::string& name, const std::string& value) {
-    switch (
-        set_panel_setting({frame_, scene_.render, accel_, view_, panel_visible_}, name, value)) {
+    switch (set_panel_setting(
+        {frame_, scene_.render, accel_, view_, panel_visible_, reference_choice_}, name, value)) {
     case Effect::new_world:
         world_.reset(); // a structure of another kind: built afresh, not refitted
         dirty_ = true;
@@ -94,12 +159,25 @@ void Preview::set(const std::string& name, const std::string& value) {
         dirty_ = true;
         break;
     case Effect::view:
-        if (view_ == View::difference && frame_.mode == Mode::hybrid && job_ &&
+        if (view_ == View::difference && !reference_ && frame_.mode == Mode::hybrid && job_ &&
             !job_->compares_with_ray())
             dirty_ = true;
         show_base();
         break;
     case Effect::panel:
+        break;
+    case Effect::reference:
+        if (reference_choice_ == "none") {
+            reference_.reset();
+        } else if (reference_choice_ == "exact") {
+            reference_ = Side{"exact", scene_, std::nullopt, FrameSettings{}};
+            make_exact(*reference_);
+        } else { // taken: the settings as they are now
+            reference_ = Side{"", scene_, accel_, frame_};
+            reference_->label = "taken: " + describe_side(*reference_);
+        }
+        retire_comparison();
+        show_base();
         break;
     }
     std::printf("glint: panel: %s = %s\n", name.c_str(), value.c_str());
@@ -118,6 +196,10 @@ void Preview::explain(int x, int y) {
                              std::to_string(scene.camera.height) + "), preview, " +
                              describe_settings();
     explanation_ = explanation_text(scene, *world_, e, what);
+    // In a view of the comparison, the pixel's two trees (`glint explain --against`).
+    if (compared_view())
+        explanation_ =
+            comparison_->explain(x, y, std::filesystem::path(options_.scene_name).filename());
     overlay_ = tree_segments(*world_, e);
     explained_ = std::pair{x, y};
     std::fputs(explanation_.c_str(), stdout);
@@ -143,7 +225,8 @@ int Preview::run() {
     bool complete = false;
     while (!glfwWindowShouldClose(w)) {
         // Wait for input; while something is still to show, no longer than the next frame.
-        if (options_.scripted() || dirty_ || !complete)
+        const bool compared = !compares() || (comparison_ && comparison_->ready());
+        if (options_.scripted() || dirty_ || !complete || !compared)
             glfwWaitEventsTimeout(
                 std::max(0.0, std::chrono::duration<double>(next_frame - Clock::now()).count()));
         else
@@ -171,6 +254,17 @@ int Preview::run() {
         }
         if (dirty_ && width > 0 && height > 0) restart();
         complete = upload_tiles() && job_ && job_->finished();
+        std::erase_if(retired_, [](const auto& c) { return c->ready(); });
+        if (complete && compares() && !comparison_) start_comparison();
+        if (comparison_ && comparison_->ready() && !comparison_shown_) {
+            if (!comparison_->error().empty())
+                std::cerr << "glint: error: the comparison failed: " << comparison_->error()
+                          << "\n";
+            comparison_shown_ = true;
+            show_base();
+        }
+        const bool compared_now = !compares() || (comparison_ && comparison_->ready());
+        complete = complete && compared_now;
         if (frames == 0 && options_.click) explain_pending_ = options_.click; // once, when traced
         if (complete && explain_pending_) {
             explain(explain_pending_->first, explain_pending_->second);

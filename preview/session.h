@@ -4,6 +4,7 @@
 // session_panel.cpp what the panel and the explained ray tree draw.
 #pragma once
 
+#include "preview/comparison.h"
 #include "preview/frame_log.h"
 #include "preview/orbit_camera.h"
 #include "preview/panel.h"
@@ -54,7 +55,18 @@ class Preview {
     // segments to the overlay.
     void explain(int x, int y);
     void draw_panel();
+    void draw_reference_panel();
     void draw_overlay();
+    // The comparison against a reference (preview/comparison.h): whether the view asks for one
+    // (a reference is set, or the heat or cause map is shown: against exact by default), and
+    // whether the current view comes from the refiner's tiles.
+    bool compares() const;
+    bool from_refiner() const;
+    // Starts comparing the finished trace with the reference; forgets the one under way.
+    void start_comparison();
+    void retire_comparison();
+    // The comparison's image for the current view, once it is ready; null otherwise.
+    const Image* compared_view() const;
     // The image pixel under window position (x, y), if any.
     std::optional<std::pair<int, int>> pixel_at(double x, double y) const;
 
@@ -90,6 +102,17 @@ class Preview {
     bool screenshot_requested_ = false;
     int screenshots_ = 0;
     std::shared_ptr<const World> world_; // of the current camera
+    // The reference the live image is compared with: none, exact or taken (the settings as they
+    // were when taken); its comparison for the current camera and settings, and comparisons no
+    // longer wanted that are still finishing (dropped once ready: no wait on the UI thread).
+    std::string reference_choice_ = "none";
+    std::optional<Side> reference_;
+    std::shared_ptr<ReferenceComparison> comparison_;
+    std::vector<std::shared_ptr<ReferenceComparison>> retired_;
+    bool comparison_shown_ = false;
+    // A hybrid reference's item buffer where its raster mode or tessellation is not the view's.
+    ItemBuffer reference_items_;
+    std::optional<std::pair<RasterMode, int>> reference_uploaded_;
     FrameLog log_;
     // After the window: ImGui's callbacks chain to the preview's, set before it, and it is gone
     // before the window's GL context.

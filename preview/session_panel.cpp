@@ -2,6 +2,7 @@
 // settings as controls, the frame's figures, the explained pixel, and its ray tree over the image.
 #include "preview/session.h"
 
+#include "frame/difference_maps.h"
 #include "io/error.h"
 
 #include <imgui.h>
@@ -79,6 +80,44 @@ void Preview::draw_overlay() {
     }
 }
 
+// The reference the live image is compared with, and what the comparison found: per cause its
+// pixels in its colour (the cause map's legend), and the heat map's scale.
+void Preview::draw_reference_panel() {
+    if (!ImGui::CollapsingHeader("Reference", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    if (ImGui::Button("exact")) set("reference", "exact");
+    ImGui::SameLine();
+    if (ImGui::Button("take these settings")) set("reference", "taken");
+    ImGui::SameLine();
+    if (ImGui::Button("none")) set("reference", "none");
+    if (!compares()) {
+        ImGui::TextWrapped("No reference: views 7 and 8 (heat and cause maps) compare with the "
+                           "exact image; the difference view shows ray against hybrid hits.");
+        return;
+    }
+    ImGui::TextWrapped("against %s", reference_ ? reference_->label.c_str() : "exact");
+    if (!comparison_ || !comparison_->ready()) {
+        ImGui::Text("comparing…");
+        return;
+    }
+    if (!comparison_->error().empty()) {
+        ImGui::TextWrapped("the comparison failed: %s", comparison_->error().c_str());
+        return;
+    }
+    const FrameDifference& d = comparison_->difference();
+    ImGui::Text("%llu pixels differ (%.2f%%)", static_cast<unsigned long long>(d.differing),
+                100.0 * static_cast<double>(d.differing) / static_cast<double>(d.causes.size()));
+    for (std::size_t c = 1; c < kCauses; ++c) {
+        const auto cause = static_cast<Cause>(c);
+        if (d.tallies[c].pixels == 0) continue;
+        const Rgb rgb = cause_colour(cause);
+        ImGui::TextColored(
+            ImVec4(rgb[0] / 255.0f, rgb[1] / 255.0f, rgb[2] / 255.0f, 1.0f),
+            "%-10s %8llu px, %5.1f%% of the error", std::string(name_of(cause)).c_str(),
+            static_cast<unsigned long long>(d.tallies[c].pixels), 100 * d.share(cause));
+    }
+    ImGui::Text("heat map: 0 (dark violet) to %.3g (yellow), radiance", heat_top(d));
+}
+
 // The panel, in one body of three sections, each read top to bottom as it appears on screen:
 // the settings as controls, the frame's figures, and the explained pixel.
 void Preview::draw_panel() {
@@ -142,6 +181,7 @@ void Preview::draw_panel() {
             ImGui::Text("antialiasing: %llu pixels took the grid",
                         static_cast<unsigned long long>(job_->refined_pixels()));
     }
+    draw_reference_panel();
     if (ImGui::CollapsingHeader("Pixel", ImGuiTreeNodeFlags_DefaultOpen)) {
         for (const auto& [kind, label] :
              {std::pair{OverlaySegment::Kind::primary, "primary (the pixel)"},

@@ -16,6 +16,7 @@ void Preview::restart() {
     const Stopwatch watch;
     refiner_.stop();
     job_.reset();
+    retire_comparison(); // of the last camera and settings
     Scene scene = scene_;
     scene.camera = camera_.camera();
     // The first world prepares the scene; later ones share its meshes and refit its structure.
@@ -40,7 +41,7 @@ void Preview::restart() {
         drawn_camera_ = scene.camera;
     }
     job_ = std::make_shared<RefineJob>(world, frame_.mode == Mode::hybrid ? ids_ : nullptr,
-                                       frame_.resolve, view_ == View::difference);
+                                       frame_.resolve, view_ == View::difference && !reference_);
     refiner_.start(job_);
     show_base();
     dirty_ = false;
@@ -61,6 +62,8 @@ void Preview::show_base() {
     if (view_ == View::items)
         derived_ = false_colour(ids_->ids, ids_->width, ids_->height), base = &derived_;
     if (view_ == View::depth) derived_ = depth_image(*ids_), base = &derived_;
+    if (const Image* compared = compared_view())
+        base = compared; // else the flat image, until ready
     if (width != texture_width_ || height != texture_height_) {
         glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, width, height, 0, GL_RGB, GL_UNSIGNED_BYTE,
                      base->rgb.data());
@@ -76,12 +79,12 @@ void Preview::show_base() {
     }
     // Per tile, how many of the job's passes the texture shows (all, for an untraced view).
     uploaded_.assign(static_cast<std::size_t>(job_->tile_count()),
-                     is_traced(view_) ? 0 : job_->passes());
+                     from_refiner() ? 0 : job_->passes());
 }
 
 bool Preview::upload_tiles() {
     if (!job_) return true;
-    if (!is_traced(view_)) return true;
+    if (!from_refiner()) return true;
     glBindTexture(GL_TEXTURE_2D, texture_);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glPixelStorei(GL_UNPACK_ROW_LENGTH, job_->width());

@@ -15,7 +15,8 @@ const std::string_view kPreviewKeys = R"(glint preview keys
   left click        explain the pixel: its ray tree drawn, the explanation in the panel
   G                 the panel (and the explained tree) on / off
   R                 reset the camera to the scene's
-  1 … 6             view: final image, item buffer, depth, normals, ray vs hybrid, reflection depth
+  1 … 8             view: final image, item buffer, depth, normals, ray vs hybrid (or vs the
+                    reference), reflection depth, heat map, cause map (against the reference)
   V                 next view
   [ ]               max reflection depth − / +
   , .               reflection cut-off (min reflectivity) ÷2 / ×2
@@ -30,7 +31,7 @@ const std::string_view kPreviewKeys = R"(glint preview keys
 
 const std::vector<std::string> kPreviewSettings = {"mode",   "raster", "resolve", "depth",
                                                    "cutoff", "tess",   "samples", "aa",
-                                                   "accel",  "view",   "panel"};
+                                                   "accel",  "view",   "panel",   "reference"};
 
 namespace {
 
@@ -100,6 +101,12 @@ Effect set_panel_setting(const PanelState& s, const std::string& name, const std
             throw std::invalid_argument(name + "=" + value + ": expected on or off");
         return s.panel = value == "on", Effect::panel;
     }
+    if (name == "reference") {
+        if (value != "none" && value != "exact" && value != "taken")
+            throw std::invalid_argument(name + "=" + value +
+                                        ": expected none, exact or taken (the settings now)");
+        return s.reference = value, Effect::reference;
+    }
     throw std::invalid_argument("no setting named '" + name +
                                 "' (the panel's: " + one_of(kPreviewSettings) + ")");
 }
@@ -118,8 +125,9 @@ void check_preview_setting(const std::string& assignment) {
     std::optional<AccelKind> accel;
     View view = View::final;
     bool panel = true;
+    std::string reference;
     const auto [name, value] = split_assignment(assignment);
-    set_panel_setting({frame, render, accel, view, panel}, name, value);
+    set_panel_setting({frame, render, accel, view, panel, reference}, name, value);
 }
 
 } // namespace glint

@@ -20,10 +20,11 @@ struct PanelState {
     std::optional<AccelKind>& accel;
     View& view;
     bool& panel;
+    std::string& reference; // none, exact, or taken (the settings as they are when it is set)
 };
 
 // What a change of setting asks of the preview.
-enum class Effect { retrace, upload, new_world, view, panel };
+enum class Effect { retrace, upload, new_world, view, panel, reference };
 
 // Sets one of the panel's settings by name: the panel's controls and --set both come here.
 // Throws std::invalid_argument saying what is wrong.

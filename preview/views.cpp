@@ -20,6 +20,10 @@ std::string_view view_label(View view) {
         return "ray vs hybrid";
     case View::reflections:
         return "reflection depth";
+    case View::heat:
+        return "heat map against the reference";
+    case View::causes:
+        return "cause map against the reference";
     }
     return "?";
 }

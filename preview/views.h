@@ -13,19 +13,21 @@
 
 namespace glint {
 
-enum class View { final, items, depth, normals, difference, reflections };
-inline constexpr int kViewCount = 6;
+// heat and causes: the live image against a reference setting (preview/comparison.h).
+enum class View { final, items, depth, normals, difference, reflections, heat, causes };
+inline constexpr int kViewCount = 8;
 
 // For --view: "items".
 template <> struct EnumNames<View> {
-    static constexpr auto names =
-        name_table("final", "items", "depth", "normals", "difference", "reflections");
+    static constexpr auto names = name_table("final", "items", "depth", "normals", "difference",
+                                             "reflections", "heat", "causes");
 };
 
 std::string_view view_label(View view); // for people, in the title: "item buffer"
-// Whether the refiner traces this view (otherwise it comes whole from the item buffer).
+// Whether the refiner traces this view (otherwise it comes whole from the item buffer, or from
+// the comparison against a reference).
 inline bool is_traced(View view) {
-    return view != View::items && view != View::depth;
+    return view != View::items && view != View::depth && view != View::heat && view != View::causes;
 }
 
 using Rgb = std::array<std::uint8_t, 3>;

@@ -2,6 +2,7 @@
 // the window's framebuffer, which must show what the headless passes compute.
 #include "test_scenes.h"
 
+#include "frame/difference_maps.h"
 #include "frame/explain.h"
 #include "frame/frame.h"
 #include "io/png.h"
@@ -58,7 +59,8 @@ Frame headless_hybrid(const Scene& scene) {
 TEST(Preview, ScriptedScreenshotOfTheDefaultSceneMatchesTheHeadlessHybridRender) {
     // Smaller under the sanitizers (test_scenes.h): the claim holds at any size.
     Scene scene = shipped("default");
-    scene.camera.width /= testing::kSanitizerShrink, scene.camera.height /= testing::kSanitizerShrink;
+    scene.camera.width /= testing::kSanitizerShrink,
+        scene.camera.height /= testing::kSanitizerShrink;
     const Image shown = screenshot(scene, View::final, "default");
     ASSERT_EQ(shown.width, scene.camera.width);
     ASSERT_EQ(shown.height, scene.camera.height);
@@ -234,6 +236,36 @@ TEST(Preview, ThePanelsControlsChangeWhatIsTraced) {
     const Frame headless = render_frame(World(expected, AccelKind::kd), ray);
     EXPECT_EQ(shown.rgb, headless.result.bytes().rgb);
     EXPECT_NE(shown.rgb, render_frame(World(options.scene), ray).result.bytes().rgb);
+}
+
+// The reference (docs/PREVIEW.md, "The panel"): the cause map view against exact is `glint
+// compare`'s cause map of the same two settings, and a click in it prints the pixel's two trees
+// with the cause the map paints there.
+TEST(Preview, TheCauseMapViewIsComparesAndAClickShowsBothTrees) {
+    PreviewOptions options = preview_of("mirrors", 160, 120);
+    Side live{"live", options.scene, std::nullopt, FrameSettings{}};
+    live.scene.render.max_depth = 2;
+    Side exact{"exact", options.scene, std::nullopt, FrameSettings{}};
+    make_exact(exact);
+    const RenderedSide a(live), b(exact);
+    const FrameDifference d = difference(a, b, false);
+    const Image map = cause_map(d, a.frame().result.bytes());
+    const auto first = std::find(d.causes.begin(), d.causes.end(), Cause::depth);
+    ASSERT_NE(first, d.causes.end()) << "depth 2 should differ from exact in the mirrors";
+    const auto p = static_cast<int>(first - d.causes.begin());
+    options.settings = {"depth=2", "reference=exact", "view=causes", "panel=off"};
+    options.click = std::pair{p % 160, p / 160};
+    const auto [shown, out] = scripted(options, "reference-causes");
+    ASSERT_EQ(shown.width, 160);
+    ASSERT_EQ(shown.height, 120);
+    int differing = 0;
+    for (int y = 0; y < 120; ++y)
+        for (int x = 0; x < 160; ++x)
+            differing += !std::equal(shown.pixel(x, y), shown.pixel(x, y) + 3, map.pixel(x, y));
+    EXPECT_LE(differing, 2) << "pixels where the view is not compare's cause map";
+    EXPECT_NE(out.find("cause: depth"), std::string::npos) << out;
+    EXPECT_NE(out.find("<- depth"), std::string::npos) << out;
+    EXPECT_NE(out.find("against exact"), std::string::npos) << out;
 }
 
 // G hides the panel (and an explained tree): the screenshot is then the render alone.
