@@ -248,7 +248,11 @@ std::string markdown(const std::vector<SceneResult>& results, const TradeoffArgs
           "ray mode. Smaller sizes are enlarged by pixel replication before comparing. "
           "**Cut-off bound**: what the reflection cut-off may cost each pixel "
           "(`trace/cutoff.h`), checked on every pixel against the untruncated float render "
-          "(*held*). All runs: [tradeoff.csv]("
+          "(*held*). **Why it errs**: each differing pixel's cause, where its ray trees and the "
+          "exact image's first part (depth, cut-off, primary or secondary hit, shadow, sampling, "
+          "precision: [DIFFERENCES.md](DIFFERENCES.md)); per knob the cause most of its squared "
+          "radiance error owes to, and the heat and cause maps of each budget's fastest setting. "
+          "All runs: [tradeoff.csv]("
        << (plots / "tradeoff.csv").generic_string() << ").\n\n";
     for (const SceneResult& sr : results) {
         md << "## " << sr.name << " (" << sr.scene.camera.width << "×" << sr.scene.camera.height
