@@ -51,44 +51,66 @@ void gnuplot(const std::string& script) {
     if (pclose(pipe) != 0) throw std::runtime_error("gnuplot failed on the plot script");
 }
 
-// Per knob, which cause its runs' error owes most to (docs/TRADEOFF.md, "Why a pixel differs"):
-// the squared radiance error of every run the knob reached, against the exact image, summed by
-// cause.
-std::string knob_causes(const std::vector<Run>& runs) {
+// The cause most of `sum`'s squared error owes to, as the summary writes it: "depth (92%)".
+std::string dominant(const CauseFigures& sum) {
+    Cause top = Cause::none;
+    std::uint64_t pixels = 0;
+    for (std::size_t c = 1; c < kCauses; ++c) {
+        const auto cause = static_cast<Cause>(c);
+        pixels += sum.at(cause).pixels;
+        if (sum.at(cause).squared_error > 0 &&
+            (top == Cause::none || sum.at(cause).squared_error > sum.at(top).squared_error))
+            top = cause;
+    }
+    if (top == Cause::none) return pixels > 0 ? "below a byte's error" : "no pixel differs";
+    return std::string(name_of(top)) + format(" (%.0f%%)", 100 * sum.share(top));
+}
+
+// Per knob, which cause its runs' error owes most to (docs/DIFFERENCES.md, "In glint tradeoff"):
+// the squared radiance error against the exact image, summed by cause over every run the knob
+// reached; and the same beyond the default setting's own error (each cause's excess over the
+// default run's, which every knob's runs share: its depth and cut-off against the exact image).
+std::string knob_causes(const std::vector<Run>& runs, const Scene& scene) {
+    Setting base; // the sweep's default setting (tradeoff.h)
+    base.max_depth = scene.render.max_depth;
+    base.min_reflectivity = scene.render.min_reflectivity;
+    const std::string base_label = base.label(scene);
+    const Run* default_run = nullptr;
+    for (const Run& r : runs)
+        if (r.label == base_label) default_run = &r;
     std::vector<std::string> knobs;
-    std::map<std::string, CauseFigures> sums;
+    std::map<std::string, std::pair<CauseFigures, CauseFigures>> sums; // all, beyond the default
     for (const Run& r : runs) {
         if (r.setting.against_grid) continue;
         std::istringstream names(r.knobs);
         for (std::string knob; std::getline(names, knob, '+');) {
             if (!sums.count(knob)) knobs.push_back(knob);
-            CauseFigures& sum = sums[knob];
+            auto& [all, beyond] = sums[knob];
             for (std::size_t c = 1; c < kCauses; ++c) {
                 const auto cause = static_cast<Cause>(c);
-                sum.at(cause).pixels += r.causes.at(cause).pixels;
-                sum.at(cause).squared_error += r.causes.at(cause).squared_error;
+                const CauseError& e = r.causes.at(cause);
+                all.at(cause).pixels += e.pixels;
+                all.at(cause).squared_error += e.squared_error;
+                if (!default_run || &r == default_run) continue;
+                const CauseError& d = default_run->causes.at(cause);
+                beyond.at(cause).pixels += e.pixels > d.pixels ? e.pixels - d.pixels : 0;
+                beyond.at(cause).squared_error += std::max(0.0, e.squared_error - d.squared_error);
             }
         }
     }
     std::ostringstream md;
-    md << "| knob | differing pixels (all its runs) | the error is mostly |\n|---|---:|---|\n";
+    md << "| knob | differing pixels (all its runs) | the error is mostly | beyond the default "
+          "setting's |\n|---|---:|---|---|\n";
     for (const std::string& knob : knobs) {
-        const CauseFigures& sum = sums[knob];
+        const auto& [all, beyond] = sums[knob];
         std::uint64_t pixels = 0;
-        Cause top = Cause::none;
-        for (std::size_t c = 1; c < kCauses; ++c) {
-            const auto cause = static_cast<Cause>(c);
-            pixels += sum.at(cause).pixels;
-            if (sum.at(cause).squared_error > 0 &&
-                (top == Cause::none || sum.at(cause).squared_error > sum.at(top).squared_error))
-                top = cause;
-        }
-        md << "| " << knob << " | " << pixels << " | ";
-        if (top == Cause::none)
-            md << (pixels > 0 ? "below a byte's error" : "no pixel differs");
-        else
-            md << name_of(top) << format(" (%.0f%%)", 100 * sum.share(top));
-        md << " |\n";
+        for (std::size_t c = 1; c < kCauses; ++c) pixels += all.at(static_cast<Cause>(c)).pixels;
+        md << "| " << knob << " | " << pixels << " | " << dominant(all) << " | "
+           << (!default_run ? std::string("–")
+               : dominant(beyond) == "no pixel differs"
+                   ? std::string("nothing: the default's error alone")
+                   : dominant(beyond))
+           << " |\n";
     }
     return md.str() + "\n";
 }
@@ -281,7 +303,7 @@ std::string markdown(const std::vector<SceneResult>& results, const TradeoffArgs
                 md << "identical";
             md << " |\n";
         }
-        md << "\n" << knob_causes(sr.runs);
+        md << "\n" << knob_causes(sr.runs, sr.scene);
         md << "\n### Antialiasing\n\n"
            << "Against the uniform " << kGridReference << "×" << kGridReference
            << " image of the default setting (ray traced, " << format("%.3f", sr.grid_seconds)

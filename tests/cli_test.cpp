@@ -274,6 +274,9 @@ TEST(Cli, TradeoffWritesTheCsvAPlotPerSceneAndTheSummary) {
     EXPECT_NE(summary.find("| PSNR ≥ 40 dB |"), std::string::npos) << summary;
     // Each knob's dominant cause, and the maps of the fastest setting within 40 dB.
     EXPECT_NE(summary.find("| max_depth | "), std::string::npos) << summary;
+    EXPECT_NE(summary.find("| the error is mostly | beyond the default setting's |"),
+              std::string::npos)
+        << summary;
     EXPECT_NE(summary.find("](./default-psnr-40-causes.png)"), std::string::npos) << summary;
     EXPECT_GT(read_png(dir / "sweep" / "default-psnr-40-heat.png").width, 0);
     EXPECT_NE(summary.find("](./default.svg)"), std::string::npos) << summary;
