@@ -67,20 +67,19 @@ Side parse_side(const std::string& flag, const std::string& text, const Scene& b
     side.label = trimmed(text);
     side.scene = base;
     side.accel = shared.accel_kind();
-    if (exact) make_exact(side);
-    render.apply(side.scene); // what the side gives changes even `exact`
-    if (render.accel_option->count()) side.accel = render.accel_kind();
     try {
-        const Precision kept = side.frame.precision;
-        const Mode kept_mode = side.frame.mode;
         side.frame = side_frame.settings();
-        side.frame.gl = frame.settings().gl;
-        if (exact && !parser.get_option("--mode")->count()) side.frame.mode = kept_mode;
-        side.frame.precision = kept;
-        if (precision_option->count()) side.frame.precision = *from_name<Precision>(precision);
     } catch (const UsageError& e) {
         throw UsageError(flag + " \"" + text + "\": " + e.what());
     }
+    if (exact) {
+        const Mode given = side.frame.mode;
+        make_exact(side);
+        if (parser.get_option("--mode")->count()) side.frame.mode = given; // refused below
+    }
+    render.apply(side.scene); // what the side gives changes even `exact`
+    if (render.accel_option->count()) side.accel = render.accel_kind();
+    if (precision_option->count()) side.frame.precision = *from_name<Precision>(precision);
     if (side.frame.precision == Precision::f64 && side.frame.mode != Mode::ray)
         throw UsageError(flag + " \"" + text + "\": double precision" + (exact ? " (exact)" : "") +
                          " is the reference tracer, ray mode only: it draws no item buffer, so "

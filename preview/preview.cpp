@@ -113,18 +113,13 @@ void Preview::start_comparison() {
     scene.camera = camera_.camera();
     Side live{"the view's settings", scene, accel_, frame_};
     Side reference;
-    if (reference_) {
+    if (reference_choice_ == "taken") {
         reference = *reference_;
         reference.scene.camera = scene.camera;
-    } else { // the heat and cause maps' default
+    } else { // exact, chosen or the maps' default, with the live scene's sampling
         reference.label = "exact";
         reference.scene = scene;
         make_exact(reference);
-    }
-    if (reference.label == "exact") {
-        reference.scene.render.samples = scene.render.samples;
-        reference.scene.render.antialias = scene.render.antialias;
-        reference.scene.render.aa_threshold = scene.render.aa_threshold;
     }
     std::shared_ptr<const IdImage> reference_ids;
     if (reference.frame.mode == Mode::hybrid) {
