@@ -93,7 +93,8 @@ std::vector<PixelTrees> RenderedSide::trees(std::span<const std::uint32_t> pixel
     if (!world_) throw std::logic_error("a resampled frame's pixels are not traced again");
     const PrimarySource source = ids_ ? PrimarySource{ids_.get(), side_.frame.resolve}
                                       : primary_source(frame_, side_.frame.resolve);
-    return many_pixel_trees(side_.scene, *world_, source, pixels, refined, depths);
+    if (!depth_worlds_) depth_worlds_ = std::make_unique<DepthWorlds>(side_.scene, *world_);
+    return many_pixel_trees(*depth_worlds_, source, pixels, refined, depths);
 }
 
 int RenderedSide::grid_at(std::uint32_t p) const {

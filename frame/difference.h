@@ -6,6 +6,7 @@
 #pragma once
 
 #include "frame/frame.h"
+#include "trace/explain.h"
 #include "trace/ray_tree.h"
 
 #include <array>
@@ -64,9 +65,10 @@ class RenderedSide {
 
   private:
     Side side_;
-    std::shared_ptr<const World> world_;  // float precision
-    std::shared_ptr<const IdImage> ids_;  // an item buffer drawn elsewhere, if any
-    std::unique_ptr<PixelTracer> tracer_; // double precision
+    std::shared_ptr<const World> world_;                // float precision
+    std::shared_ptr<const IdImage> ids_;                // an item buffer drawn elsewhere, if any
+    mutable std::unique_ptr<DepthWorlds> depth_worlds_; // float: made as trees() asks for them
+    std::unique_ptr<PixelTracer> tracer_;               // double precision
     Frame frame_;
 };
 

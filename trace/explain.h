@@ -10,6 +10,8 @@
 #include "trace/render_result.h"
 
 #include <array>
+#include <map>
+#include <memory>
 #include <optional>
 
 namespace glint {
@@ -62,12 +64,25 @@ PixelExplanation explain_pixel(const World& world, const PrimarySource& source, 
 PixelTrees pixel_trees(const World& world, const PrimarySource& source, int x, int y,
                        bool refined = false);
 
-// pixel_trees for many pixels (row-major indices) of `world`, made from `scene`, in parallel.
-// `refined`: adaptive antialiasing's verdict per pixel of the frame (empty: none). `depths`:
-// per pixel, a maximum depth below the scene's to trace it to (empty: the scene's), each on a
-// World of the scene with that depth that shares `world`'s geometry.
-std::vector<PixelTrees> many_pixel_trees(const Scene& scene, const World& world,
-                                         const PrimarySource& source,
+// Worlds of one scene at lower maximum depths than its own, each made on first use and kept
+// (they share the scene's World's geometry). Not for several threads at once.
+class DepthWorlds {
+  public:
+    // `world` is made from `scene`; both must outlive this.
+    DepthWorlds(const Scene& scene, const World& world) : scene_(scene), world_(world) {}
+    // The World at `depth`: the scene's own at or above its depth.
+    const World& at(int depth);
+
+  private:
+    const Scene& scene_;
+    const World& world_;
+    std::map<int, std::unique_ptr<World>> capped_;
+};
+
+// pixel_trees for many pixels (row-major indices) of `worlds`' scene, in parallel. `refined`:
+// adaptive antialiasing's verdict per pixel of the frame (empty: none). `depths`: per pixel, a
+// maximum depth below the scene's to trace it to (empty: the scene's).
+std::vector<PixelTrees> many_pixel_trees(DepthWorlds& worlds, const PrimarySource& source,
                                          std::span<const std::uint32_t> pixels,
                                          std::span<const std::uint8_t> refined,
                                          std::span<const int> depths);

@@ -7,8 +7,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include <map>
-#include <memory>
+#include <limits>
 
 namespace glint {
 inline namespace GLINT_PRECISION {
@@ -99,27 +98,30 @@ PixelTrees pixel_trees(const World& world, const PrimarySource& source, int x, i
     return out;
 }
 
-std::vector<PixelTrees> many_pixel_trees(const Scene& scene, const World& world,
-                                         const PrimarySource& source,
+const World& DepthWorlds::at(int depth) {
+    if (depth >= world_.settings().max_depth) return world_;
+    std::unique_ptr<World>& capped = capped_[depth];
+    if (!capped) {
+        Scene copy = scene_;
+        copy.render.max_depth = depth;
+        capped = std::make_unique<World>(copy, world_);
+    }
+    return *capped;
+}
+
+std::vector<PixelTrees> many_pixel_trees(DepthWorlds& worlds, const PrimarySource& source,
                                          std::span<const std::uint32_t> pixels,
                                          std::span<const std::uint8_t> refined,
                                          std::span<const int> depths) {
-    // A World a depth: the scene's own, and one for each lower depth asked for.
-    const int own = world.settings().max_depth;
-    std::map<int, std::unique_ptr<World>> capped;
-    for (const int depth : depths)
-        if (depth < own && !capped.count(depth)) {
-            Scene copy = scene;
-            copy.render.max_depth = depth;
-            capped[depth] = std::make_unique<World>(copy, world);
-        }
-    const auto width = static_cast<std::uint32_t>(world.camera().width());
+    const World& own = worlds.at(std::numeric_limits<int>::max());
+    std::vector<const World*> world_of(pixels.size(), &own);
+    for (std::size_t i = 0; i < depths.size(); ++i) world_of[i] = &worlds.at(depths[i]);
+    const auto width = static_cast<std::uint32_t>(own.camera().width());
     std::vector<PixelTrees> out(pixels.size());
     tbb::parallel_for(std::size_t{0}, pixels.size(), [&](std::size_t i) {
         const std::uint32_t p = pixels[i];
-        const World& w = !depths.empty() && depths[i] < own ? *capped.at(depths[i]) : world;
-        out[i] = pixel_trees(w, source, static_cast<int>(p % width), static_cast<int>(p / width),
-                             !refined.empty() && refined[p] != 0);
+        out[i] = pixel_trees(*world_of[i], source, static_cast<int>(p % width),
+                             static_cast<int>(p / width), !refined.empty() && refined[p] != 0);
     });
     return out;
 }
@@ -129,17 +131,18 @@ namespace {
 class RayPixelTracer final : public PixelTracer {
   public:
     RayPixelTracer(const Scene& scene, std::optional<AccelKind> accel)
-        : scene_(scene), world_(scene, accel) {}
+        : scene_(scene), world_(scene, accel), worlds_(scene_, world_) {}
 
     std::vector<PixelTrees> trees(std::span<const std::uint32_t> pixels,
                                   std::span<const std::uint8_t> refined,
                                   std::span<const int> depths) const override {
-        return many_pixel_trees(scene_, world_, {}, pixels, refined, depths);
+        return many_pixel_trees(worlds_, {}, pixels, refined, depths);
     }
 
   private:
     Scene scene_;
     World world_;
+    mutable DepthWorlds worlds_; // made as trees() asks for them
 };
 
 } // namespace
