@@ -219,9 +219,9 @@ int Preview::run() {
     int frames = 0;
     bool complete = false;
     while (!glfwWindowShouldClose(w)) {
-        // Wait for input; while something is still to show, no longer than the next frame.
-        const bool compared = !compares() || (comparison_ && comparison_->ready());
-        if (options_.scripted() || dirty_ || !complete || !compared)
+        // Wait for input; while something is still to show (a trace or a comparison under way),
+        // no longer than the next frame.
+        if (options_.scripted() || dirty_ || !complete)
             glfwWaitEventsTimeout(
                 std::max(0.0, std::chrono::duration<double>(next_frame - Clock::now()).count()));
         else
@@ -258,8 +258,7 @@ int Preview::run() {
             comparison_shown_ = true;
             show_base();
         }
-        const bool compared_now = !compares() || (comparison_ && comparison_->ready());
-        complete = complete && compared_now;
+        complete = complete && (!compares() || (comparison_ && comparison_->ready()));
         if (frames == 0 && options_.click) explain_pending_ = options_.click; // once, when traced
         if (complete && explain_pending_) {
             explain(explain_pending_->first, explain_pending_->second);
