@@ -1,6 +1,6 @@
 // `glint compare`'s parts: hybrid against ray mode (compare_command.cpp, as it always was) and
 // any two settings against each other with each differing pixel's cause (compare_sides.cpp,
-// docs/TRADEOFF.md "Why a pixel differs"); `glint explain --against` reads a side's flags the
+// docs/DIFFERENCES.md); `glint explain --against` reads a side's flags the
 // same way.
 #pragma once
 

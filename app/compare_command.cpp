@@ -209,7 +209,7 @@ Command add_compare_command(CLI::App& app) {
     args->a_option = cmd->add_option(
         "--a", args->a,
         "Side A's render flags, quoted (\"--max-depth 2 --accel grid\"), or exact (ray traced in "
-        "double, depth 64, no cut-off); unset flags are compare's own (docs/TRADEOFF.md)");
+        "double, depth 64, no cut-off); unset flags are compare's own (docs/DIFFERENCES.md)");
     args->b_option = cmd->add_option("--b", args->b, "Side B's render flags, as --a");
     cmd->add_flag("--exr", args->exr,
                   "With --a/--b: also write the float error |A - B| as PREFIX-heat.exr");

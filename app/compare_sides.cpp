@@ -1,11 +1,12 @@
 // `glint compare SCENE --a "FLAGS" --b "FLAGS"`: any two settings of one scene, their images, the
 // heat map of their difference and the map of its causes, and per cause its pixels, its share of
-// the error and the levels where the trees parted (docs/TRADEOFF.md, "Why a pixel differs").
+// the error and the levels where the trees parted (docs/DIFFERENCES.md).
 #include "app/compare.h"
 #include "app/phase_json.h"
 
 #include "frame/difference_maps.h"
 #include "io/exr.h"
+#include "io/extension.h"
 #include "io/png.h"
 #include "trace/stopwatch.h"
 
@@ -98,7 +99,7 @@ struct Outputs {
 
 Outputs outputs_of(const CompareArgs& args) {
     Outputs out{args.prefix, args.exr};
-    if (fs::path(out.prefix).extension() == ".exr") {
+    if (extension_of(out.prefix) == ".exr") { // in any case, as render's -o reads it
         out.prefix = out.prefix.substr(0, out.prefix.size() - 4);
         out.exr = true;
     }

@@ -1,5 +1,5 @@
 // Two settings of one scene compared pixel by pixel (`glint compare --a … --b …`, `glint explain
-// --against`, docs/TRADEOFF.md "Why a pixel differs"): both frames rendered, the pixels that
+// --against`, docs/DIFFERENCES.md): both frames rendered, the pixels that
 // differ found, and each of those traced again on both sides with the recorder on, so that the
 // first place its two ray trees part names its cause (trace/ray_tree.h, DESIGN §13). Only the
 // differing pixels are traced again: what that costs is measured (`seconds` below).

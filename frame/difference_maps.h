@@ -1,6 +1,6 @@
 // Pictures of a comparison (frame/difference.h): the heat map of the error and the map of its
 // causes, each with its legend drawn below the image in a strip of its own, so that pixel (x, y)
-// of a map is pixel (x, y) of the frame (docs/TRADEOFF.md, "Why a pixel differs").
+// of a map is pixel (x, y) of the frame (docs/DIFFERENCES.md).
 #pragma once
 
 #include "frame/difference.h"

@@ -45,7 +45,6 @@ class ReferenceComparison {
     const Image& differing() const { return differing_; }
     // The two trees of pixel (x, y) side by side, as `glint explain --against` prints them.
     std::string explain(int x, int y, const std::string& scene_name) const;
-    const Side& reference() const { return input_.reference; }
 
   private:
     void run();

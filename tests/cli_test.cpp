@@ -232,7 +232,7 @@ TEST(Cli, TradeoffWritesTheCsvAPlotPerSceneAndTheSummary) {
         if (byte_error > 1) {
             EXPECT_GT(largest, (byte_error - 1) / 255.0) << line;
         }
-        // Why it differs (docs/TRADEOFF.md, "Why a pixel differs"): pixels wherever bytes do,
+        // Why it differs (docs/DIFFERENCES.md): pixels wherever bytes do,
         // and the causes' shares summing to 1 wherever the radiance does.
         const unsigned long differing = std::stoul(row[column("differing_pixels")]);
         EXPECT_EQ(differing > 0, byte_error > 0) << line;
@@ -291,7 +291,7 @@ TEST(Cli, TradeoffWritesTheCsvAPlotPerSceneAndTheSummary) {
 }
 
 // The commands take NFF files and scenes with OBJ meshes as they take JSON scenes.
-// compare --a --b (docs/TRADEOFF.md, "Why a pixel differs"): both images, the heat and cause
+// compare --a --b (docs/DIFFERENCES.md): both images, the heat and cause
 // maps, the float error, and JSON whose causes add up; explain --against at a pixel the map
 // paints names the same cause. A bad side writes nothing.
 TEST(Cli, CompareTwoSettingsWritesTheMapsAndExplainAgainstAgrees) {
@@ -462,7 +462,7 @@ INSTANTIATE_TEST_SUITE_P(EveryClass, BadRunTest, ::testing::Values(
     BadRun{"explain: render's -o", "", "explain -o x.png 10 10", "glint: error: -o: explain writes no image"},
     BadRun{"sample ids in ray mode", "", "render --aa-sample-ids --mode ray", "glint: error: --aa-sample-ids refines where the item buffer's samples name several objects: hybrid mode only"},
     BadRun{"preview: --gl", "", "preview --gl egl", "glint: error: --gl: the preview draws with its window's own GL context"},
-    // compare's sides (docs/TRADEOFF.md, "Why a pixel differs"): each message names the side.
+    // compare's sides (docs/DIFFERENCES.md): each message names the side.
     BadRun{"compare: unknown flag in a side", "", "compare --size 8x6 --a '--fast'", "glint: error: --a \"--fast\": The following argument was not expected: --fast"},
     BadRun{"compare: bad value in a side", "", "compare --size 8x6 --b '--max-depth deep'", "glint: error: --b \"--max-depth deep\": --max-depth: Value deep not in range 0 to 64"},
     BadRun{"compare: shared flag in a side", "", "compare --size 8x6 --b '--size 10x10'", "glint: error: --b \"--size 10x10\": --size: both sides render the same scene at the same size: give it outside --b"},

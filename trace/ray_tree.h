@@ -1,10 +1,9 @@
 // Two settings of one scene, one pixel: where their ray trees part, and so why the pixel differs
-// (`glint compare --a … --b …`, `glint explain --against`, docs/TRADEOFF.md "Why a pixel
-// differs"). The trees come from the recorder (trace/recorder.h) in either precision and are kept
-// here in one form both share, so that a float tree can be laid beside a double one. The rule is
-// DESIGN §13's: walk both trees in the same order (the primary ray, then per node its shadow
-// verdicts light by light, its reflected child, its transmitted child); the first place they part
-// names the cause.
+// (`glint compare --a … --b …`, `glint explain --against`, docs/DIFFERENCES.md). The trees come
+// from the recorder (trace/recorder.h) in either precision and are kept here in one form both
+// share, so that a float tree can be laid beside a double one. The rule is DESIGN §13's: walk both
+// trees in the same order (the primary ray, then per node its shadow verdicts light by light, its
+// reflected child, its transmitted child); the first place they part names the cause.
 #pragma once
 
 #include "trace/accel/accel_kind.h"
