@@ -277,8 +277,17 @@ TEST(Cli, TradeoffWritesTheCsvAPlotPerSceneAndTheSummary) {
     EXPECT_NE(summary.find("| the error is mostly | beyond the default setting's |"),
               std::string::npos)
         << summary;
-    EXPECT_NE(summary.find("](./default-psnr-40-causes.png)"), std::string::npos) << summary;
-    EXPECT_GT(read_png(dir / "sweep" / "default-psnr-40-heat.png").width, 0);
+    // The fastest setting within 40 dB depends on the timings: its maps where it errs (every
+    // thumbnail the summary names is written), "identical" where it is exact.
+    const std::size_t row = summary.find("| PSNR ≥ 40 dB |");
+    const std::string budget_row = summary.substr(row, summary.find('\n', row) - row);
+    if (budget_row.find("| identical |") == std::string::npos) {
+        EXPECT_NE(budget_row.find("](./default-psnr-40-causes.png)"), std::string::npos)
+            << budget_row;
+        EXPECT_GT(read_png(dir / "sweep" / "default-psnr-40-heat.png").width, 0);
+    } else {
+        EXPECT_NE(budget_row.find("| exact | 0/255 |"), std::string::npos) << budget_row;
+    }
     EXPECT_NE(summary.find("](./default.svg)"), std::string::npos) << summary;
     EXPECT_NE(summary.find("](./default-antialiasing.svg)"), std::string::npos) << summary;
     EXPECT_NE(summary.find("| hybrid auto tess 32 4x4 adaptive 0.02 |"), std::string::npos)
