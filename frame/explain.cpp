@@ -123,6 +123,9 @@ void write_ray(std::string& out, const Facts& facts, const PixelExplanation& e, 
                 ", weight " + num(r.factor) + ", path weight " + num(r.weight) + ")";
     line(head);
     line("  o = " + vec(facts.to_scene(r.ray.origin)) + ", d = " + vec(DVec3(r.ray.direction)));
+    for (const CutThrough& c : e.cut_through[i])
+        line("  passes through " + facts.object(c.object) + " at t = " + num(c.t) +
+             ": cut out there (alpha " + num(c.alpha) + " < cut-off " + num(c.cutoff) + ")");
     if (!r.hit.found()) {
         line("  hits nothing: the background");
         line("  R_" + std::to_string(i) + " = background = " + colour(r.colour));
@@ -152,6 +155,8 @@ void write_ray(std::string& out, const Facts& facts, const PixelExplanation& e, 
              " × the diffuse and ambient colours");
     }
     line("  ambient  k_a·I_a = " + colour(r.ambient));
+    const bool emits = r.emission != Vec3(0);
+    if (emits) line("  emission E = " + colour(r.emission) + " (unshadowed)");
     Vec3 diffuse(0), specular(0);
     for (std::size_t k = 0; k < r.lights.size(); ++k) {
         const LightTerm& term = r.lights[k];
@@ -176,8 +181,10 @@ void write_ray(std::string& out, const Facts& facts, const PixelExplanation& e, 
     }
     // R_p = ambient + diffuse + specular + k·R_q for each child q, then the numbers.
     const std::string p = "R_" + std::to_string(i);
-    std::string terms = "ambient + diffuse + specular";
-    std::string numbers = colour(r.ambient) + " + " + colour(diffuse) + " + " + colour(specular);
+    std::string terms = emits ? "ambient + emission + diffuse + specular"
+                              : "ambient + diffuse + specular";
+    std::string numbers = colour(r.ambient) + " + " + (emits ? colour(r.emission) + " + " : "") +
+                          colour(diffuse) + " + " + colour(specular);
     for (const int child : r.children) {
         const RecordedRay& c = e.rays[static_cast<std::size_t>(child)];
         line("  " + std::string(name_of(c.kind)) + ": k = " + num(c.factor) + " → ray " +
@@ -259,6 +266,15 @@ std::string explanation_json(const Scene& scene, const World& world, const Pixel
                     {"origin", json_vec(facts.to_scene(r.ray.origin))},
                     {"direction", json_vec(DVec3(r.ray.direction))},
                     {"hit", nullptr}};
+        if (!e.cut_through[i].empty()) {
+            json passed = json::array();
+            for (const CutThrough& c : e.cut_through[i])
+                passed.push_back({{"object", c.object},
+                                  {"t", real(c.t)},
+                                  {"alpha", real(c.alpha)},
+                                  {"cutoff", real(c.cutoff)}});
+            ray["cut_through"] = std::move(passed);
+        }
         if (r.hit.found()) {
             const std::uint32_t o = r.hit.object;
             const Ray& local = e.object_rays[i];
@@ -286,6 +302,7 @@ std::string explanation_json(const Scene& scene, const World& world, const Pixel
                     {"colour", json_vec(DVec3(Vec3(r.texel->colour)))}};
             }
             ray["ambient"] = json_vec(DVec3(r.ambient));
+            ray["emission"] = json_vec(DVec3(r.emission));
             json lights = json::array();
             for (std::size_t k = 0; k < r.lights.size(); ++k) {
                 const LightTerm& term = r.lights[k];

@@ -185,7 +185,7 @@ std::string against_text(const RenderedSide& a, const RenderedSide& b, const Pix
     if (p.why.cause == Cause::none) return out;
     out += "\nshown: A's " + sample_name(p.a, p.sample_a) + ", B's " +
            sample_name(p.b, p.sample_b) + "; each node's share of the sample's colour is " +
-           "weight x (ambient + diffuse + specular)\n\n";
+           "weight x (ambient + emission + diffuse + specular)\n\n";
     const std::vector<Row> rows = rows_of(p);
     const SampleTree& ta = p.a.samples[static_cast<std::size_t>(p.sample_a)];
     const SampleTree& tb = p.b.samples[static_cast<std::size_t>(p.sample_b)];

@@ -33,14 +33,27 @@ std::optional<TextureImage> decode_texture(const std::string& bytes, const std::
               std::to_string(kMaxTexturePixels) + " glint decodes";
         return std::nullopt;
     }
+    // Two and four channels carry alpha (cut-outs read it); it is kept beside the colour.
+    const bool has_alpha = channels == 2 || channels == 4;
+    const int wanted = has_alpha ? 4 : 3;
     const std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
-        stbi_load_from_memory(data, size, &width, &height, &channels, 3), stbi_image_free);
+        stbi_load_from_memory(data, size, &width, &height, &channels, wanted), stbi_image_free);
     if (!pixels) {
         why = std::string("cannot be decoded: ") + stbi_failure_reason();
         return std::nullopt;
     }
-    TextureImage image{name, width, height, {}};
-    image.rgb.assign(pixels.get(), pixels.get() + static_cast<std::size_t>(width) * height * 3);
+    const std::size_t count = static_cast<std::size_t>(width) * height;
+    TextureImage image{name, width, height, {}, {}};
+    if (!has_alpha) {
+        image.rgb.assign(pixels.get(), pixels.get() + count * 3);
+        return image;
+    }
+    image.rgb.resize(count * 3);
+    image.alpha.resize(count);
+    for (std::size_t i = 0; i < count; ++i) {
+        std::copy_n(pixels.get() + 4 * i, 3, &image.rgb[3 * i]);
+        image.alpha[i] = pixels.get()[4 * i + 3];
+    }
     return image;
 }
 

@@ -114,7 +114,7 @@ std::array<float, 6> proxy_box(const Object& o) {
 
 struct ItemBuffer::Impl {
     struct Geometry {
-        GLuint vao = 0, vertices = 0, indices = 0;
+        GLuint vao = 0, vertices = 0, indices = 0, uvs = 0;
         GLsizei index_count = 0;
     };
     // One instance's attributes (item.vert, locations 1 to 15).
@@ -127,7 +127,8 @@ struct ItemBuffer::Impl {
         glm::vec3 shape;           // proxies: ShapeKind, top radius, open (0 or 1)
     };
 
-    GLuint mesh_program = 0, proxy_program = 0, empty_vao = 0, instance_buffer = 0;
+    GLuint mesh_program = 0, proxy_program = 0, cutout_program = 0, empty_vao = 0,
+           instance_buffer = 0;
     GLuint framebuffer = 0, colour = 0, depth = 0;
     GLuint pack_buffers[2] = {0, 0}; // ids, depth
     GLuint flat_colour = 0; // RGBA8, attachment 1, made on the first flat-preview draw
@@ -140,9 +141,50 @@ struct ItemBuffer::Impl {
     // Per geometry, the objects drawn with it (a mesh, the tessellation of one shape, or one
     // proxy box): one instanced draw, each instance's attributes read from `instance_buffer`.
     std::vector<std::vector<std::uint32_t>> instances_of;
+    // Cut-out meshes (DESIGN §13), drawn one by one with cutout_program: the object, its
+    // geometry (positions and texture coordinates) and its alpha texture (0: none).
+    struct CutOutDraw {
+        std::uint32_t object;
+        std::size_t geometry;
+        GLuint alpha_texture;
+    };
+    std::vector<CutOutDraw> cut_outs;
+    std::vector<GLuint> alpha_textures; // made by upload, one per image and wrap modes
+
+    void release_alpha_textures() {
+        if (!alpha_textures.empty())
+            glDeleteTextures(static_cast<GLsizei>(alpha_textures.size()), alpha_textures.data());
+        alpha_textures.clear();
+    }
+
+    // The texture's alpha as an R8 GL texture sampled as the tracer samples it (bilinear between
+    // texel centres, its wrap modes, no mipmaps).
+    GLuint alpha_texture(const Texture& texture) {
+        const TextureImage& image = *texture.image;
+        GLuint name = 0;
+        glGenTextures(1, &name);
+        alpha_textures.push_back(name);
+        glBindTexture(GL_TEXTURE_2D, name);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, image.width, image.height, 0, GL_RED,
+                     GL_UNSIGNED_BYTE, image.alpha.data());
+        const auto wrap = [](Wrap mode) {
+            return mode == Wrap::clamp    ? GL_CLAMP_TO_EDGE
+                   : mode == Wrap::mirror ? GL_MIRRORED_REPEAT
+                                          : GL_REPEAT;
+        };
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap(texture.wrap_s));
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap(texture.wrap_t));
+        glBindTexture(GL_TEXTURE_2D, 0);
+        return name;
+    }
 
     ~Impl() {
         for (const Geometry& g : geometries) release(g);
+        release_alpha_textures();
+        glDeleteProgram(cutout_program);
         glDeleteProgram(mesh_program);
         glDeleteProgram(proxy_program);
         glDeleteVertexArrays(1, &empty_vao);
@@ -158,10 +200,13 @@ struct ItemBuffer::Impl {
         glDeleteVertexArrays(1, &g.vao);
         glDeleteBuffers(1, &g.vertices);
         glDeleteBuffers(1, &g.indices);
+        glDeleteBuffers(1, &g.uvs);
     }
 
+    // `uvs`: per vertex, at location 1 (cut-out meshes), or none.
     std::size_t add_geometry(const std::vector<Vec3>& vertices,
-                             const std::vector<glm::uvec3>& triangles) {
+                             const std::vector<glm::uvec3>& triangles,
+                             const std::vector<glm::vec2>& uvs = {}) {
         Geometry g;
         glGenVertexArrays(1, &g.vao);
         glBindVertexArray(g.vao);
@@ -171,6 +216,14 @@ struct ItemBuffer::Impl {
                      vertices.data(), GL_STATIC_DRAW);
         glEnableVertexAttribArray(0);
         glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(Vec3), nullptr);
+        if (!uvs.empty()) {
+            glGenBuffers(1, &g.uvs);
+            glBindBuffer(GL_ARRAY_BUFFER, g.uvs);
+            glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(uvs.size() * sizeof(glm::vec2)),
+                         uvs.data(), GL_STATIC_DRAW);
+            glEnableVertexAttribArray(1);
+            glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, sizeof(glm::vec2), nullptr);
+        }
         glGenBuffers(1, &g.indices);
         glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g.indices);
         glBufferData(GL_ELEMENT_ARRAY_BUFFER,
@@ -297,6 +350,7 @@ struct ItemBuffer::Impl {
     void draw_plane(const World& world, std::uint32_t object, const glm::dmat4& clip, float near,
                     bool flat_preview);
     void draw_instanced(const World& world, const glm::dmat4& clip, float near, bool flat_preview);
+    void draw_cut_outs(const World& world, const glm::dmat4& clip, bool flat_preview);
 
     ItemBufferResult read_back(float near) {
         const std::size_t pixels = static_cast<std::size_t>(width) * height;
@@ -358,12 +412,13 @@ ItemBuffer::ItemBuffer() : impl_(std::make_unique<Impl>()) {
     gl.mesh_program = link(shaders::kItemVert, shaders::kItemMeshFrag);
     gl.proxy_program =
         link(shaders::kItemVert, with_shape_constants(shaders::kItemProxyFrag).c_str());
+    gl.cutout_program = link(shaders::kItemCutoutVert, shaders::kItemCutoutFrag);
     glGenVertexArrays(1, &gl.empty_vao); // core profile draws need a VAO even with no attributes
     // llvmpipe compiles a program's machine code at its first draw (~0.1–0.2 s): draw each once
     // into a 1×1 target now, so that this cost counts as shader compilation, not as a frame.
     gl.begin(1, 1);
     glBindVertexArray(gl.empty_vao);
-    for (const GLuint program : {gl.mesh_program, gl.proxy_program}) {
+    for (const GLuint program : {gl.mesh_program, gl.proxy_program, gl.cutout_program}) {
         glUseProgram(program);
         glUniform1i(glGetUniformLocation(program, "full_screen"), 1);
         glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -383,7 +438,11 @@ void ItemBuffer::upload(const World& world, RasterMode mode, int tessellation) {
     gl.proxy_geometry.clear();
     gl.planes.clear();
     gl.instances_of.clear();
+    gl.cut_outs.clear();
+    gl.release_alpha_textures();
     std::map<const Mesh*, std::size_t> mesh_geometry; // each mesh uploaded once
+    std::map<const Mesh*, std::size_t> cut_out_geometry; // with texture coordinates
+    std::map<std::tuple<const TextureImage*, Wrap, Wrap>, GLuint> alpha_of;
     deviations_.assign(world.objects().size(), 0.0f);
     // One proxy box per distinct object-space box, and one tessellation per distinct shape and
     // parameters (cones: per top radius; open or capped), shared by every object using it.
@@ -402,6 +461,21 @@ void ItemBuffer::upload(const World& world, RasterMode mode, int tessellation) {
         const ShapeTraits& traits = shape_traits(o.shape);
         if (traits.raster == RasterAs::analytic) {
             gl.planes.push_back(i);
+            continue;
+        }
+        if (traits.raster == RasterAs::triangles && o.params.cut_out) {
+            const Mesh& mesh = *o.params.mesh;
+            auto [it, added] = cut_out_geometry.emplace(&mesh, 0);
+            if (added) it->second = gl.add_geometry(mesh.vertices, mesh.triangles, mesh.uvs);
+            GLuint alpha = 0;
+            const Texture* texture = o.params.cut_out->texture;
+            if (texture && !mesh.uvs.empty() && !texture->image->alpha.empty()) {
+                auto [t, made] = alpha_of.emplace(
+                    std::make_tuple(texture->image.get(), texture->wrap_s, texture->wrap_t), 0);
+                if (made) t->second = gl.alpha_texture(*texture);
+                alpha = t->second;
+            }
+            gl.cut_outs.push_back({i, it->second, alpha});
             continue;
         }
         if (traits.raster == RasterAs::triangles) {
@@ -570,6 +644,35 @@ void ItemBuffer::Impl::draw_instanced(const World& world, const glm::dmat4& clip
     }
 }
 
+// Cut-out meshes, one draw each: matrices composed in double as for the others, and the alpha
+// test's factor, cut-off and texture as uniforms.
+void ItemBuffer::Impl::draw_cut_outs(const World& world, const glm::dmat4& clip,
+                                     bool flat_preview) {
+    glUseProgram(cutout_program);
+    const auto uniform = [&](const char* name) {
+        return glGetUniformLocation(cutout_program, name);
+    };
+    glUniform1i(uniform("flat_preview"), flat_preview);
+    glUniform1i(uniform("alpha_texture"), 0);
+    glActiveTexture(GL_TEXTURE0);
+    for (const CutOutDraw& d : cut_outs) {
+        const Object& o = world.objects()[d.object];
+        const glm::dmat4 model = to_mat4(o.transform.linear, o.transform.offset);
+        glUniformMatrix4fv(uniform("model_view_projection"), 1, GL_FALSE,
+                           glm::value_ptr(glm::mat4(clip * model)));
+        glUniformMatrix4fv(uniform("model"), 1, GL_FALSE, glm::value_ptr(glm::mat4(model)));
+        glUniform1ui(uniform("object_id"), d.object + 1);
+        glUniform3fv(uniform("diffuse"), 1, glm::value_ptr(world.material(d.object).diffuse));
+        glUniform1f(uniform("alpha"), o.params.cut_out->alpha);
+        glUniform1f(uniform("cutoff"), o.params.cut_out->cutoff);
+        glUniform1i(uniform("textured"), d.alpha_texture != 0);
+        glBindTexture(GL_TEXTURE_2D, d.alpha_texture);
+        glBindVertexArray(geometries[d.geometry].vao);
+        glDrawElements(GL_TRIANGLES, geometries[d.geometry].index_count, GL_UNSIGNED_INT, nullptr);
+    }
+    glBindTexture(GL_TEXTURE_2D, 0);
+}
+
 ItemBufferResult ItemBuffer::draw(const World& world, bool flat_preview, int samples) {
     Impl& gl = *impl_;
     const PinholeCamera& camera = world.camera();
@@ -594,6 +697,7 @@ ItemBufferResult ItemBuffer::draw(const World& world, bool flat_preview, int sam
     for (const std::uint32_t plane : gl.planes)
         gl.draw_plane(world, plane, clip, near, flat_preview);
     if (!gl.instances_of.empty()) gl.draw_instanced(world, clip, near, flat_preview);
+    if (!gl.cut_outs.empty()) gl.draw_cut_outs(world, clip, flat_preview);
     glBindVertexArray(0);
     glFlush(); // llvmpipe starts rasterizing on its threads; read_back waits for it
     ItemBufferResult result = gl.read_back(near);

@@ -16,7 +16,8 @@ glm::dvec3 ray_radiance_bound(const Scene& scene) {
     double reflectivity = 0;
     for (const Material& m : scene.materials) {
         const auto hit = [&](glm::vec3 ambient, glm::vec3 diffuse) {
-            return glm::dvec3(ambient) * glm::dvec3(scene.ambient) +
+            // Emission: its texture's texels are at most 1.
+            return glm::dvec3(ambient) * glm::dvec3(scene.ambient) + glm::dvec3(m.emission) +
                    light_sum * (glm::dvec3(diffuse) + glm::dvec3(m.specular));
         };
         local = glm::max(local, hit(m.ambient, m.diffuse));

@@ -4,6 +4,8 @@
 #include "trace/sampling.h"
 #include "trace/shading.h"
 
+#include <algorithm>
+
 namespace glint {
 inline namespace GLINT_PRECISION {
 
@@ -30,6 +32,25 @@ std::uint32_t first_blocker(const World& world, const SurfacePoint& surface, Vec
         skip = crossed.skip_through;
     }
     return kNoObject; // only glass: blocked by the crossing limit
+}
+
+// Each cut-out object's nearest hit on `ray` before `t_hit` when it is cut away there: the mesh
+// intersected as if nothing were cut, then its hit's alpha read as the tracer reads it.
+std::vector<CutThrough> cut_through(const World& world, const Ray& ray, Real t_hit) {
+    std::vector<CutThrough> passed;
+    for (std::uint32_t i = 0; i < world.objects().size(); ++i) {
+        const Object& o = world.objects()[i];
+        if (!o.params.cut_out) continue;
+        NoCounters none;
+        const ShapeHit h = intersect_mesh(*o.params.mesh, o.transform.to_object(ray), t_hit, none);
+        const CutOut& cut = *o.params.cut_out;
+        if (h.found() && cut_away(*o.params.mesh, cut, h.part, h.u, h.v))
+            passed.push_back(
+                {i, h.t, cut_out_alpha(*o.params.mesh, cut, h.part, h.u, h.v), cut.cutoff});
+    }
+    std::sort(passed.begin(), passed.end(),
+              [](const CutThrough& a, const CutThrough& b) { return a.t < b.t; });
+    return passed;
 }
 
 std::array<std::uint8_t, 3> bytes_of(Vec3 colour) {
@@ -82,6 +103,7 @@ PixelExplanation explain_pixel(const World& world, const PrimarySource& source, 
         ++(ray.kind == RayKind::primary      ? out.tree_rays.primary
            : ray.kind == RayKind::reflection ? out.tree_rays.reflection
                                              : out.tree_rays.transmission);
+        out.cut_through.push_back(cut_through(world, ray.ray, ray.hit.t));
         std::vector<std::uint32_t>& blockers = out.blockers.emplace_back();
         for (const LightTerm& term : ray.lights) {
             out.tree_rays.shadow += term.shadow_rays;

@@ -31,6 +31,13 @@ struct ItemBufferVerdict {
     const char* outcome() const;
 };
 
+// A hit a ray passed through because its material cuts out there (DESIGN §13).
+struct CutThrough {
+    std::uint32_t object;
+    Real t;
+    float alpha, cutoff; // alpha < cutoff
+};
+
 struct PixelExplanation {
     int x = 0, y = 0;              // the pixel
     int n = 1;                     // its N×N grid (the scene's samples)
@@ -42,6 +49,9 @@ struct PixelExplanation {
     // Per ray, per light (as in rays[i].lights): the first opaque object on the blocked shadow
     // segment, kNoObject where the light is not blocked.
     std::vector<std::vector<std::uint32_t>> blockers;
+    // Per ray: the cut-out objects it passed through before its hit, nearest first (each
+    // object's nearest such hit).
+    std::vector<std::vector<CutThrough>> cut_through;
     std::optional<ItemBufferVerdict> item_buffer; // hybrid only
     RayCounts tree_rays; // the rays of `rays`, shadow rays included: the explained sample's
     std::array<std::uint8_t, 3> sample_bytes{};

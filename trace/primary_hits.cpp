@@ -40,6 +40,14 @@ inline namespace GLINT_PRECISION {
 // pixel can be missed at a pixel centre by a proxy's float intersection (SPD's tree-11, whose
 // branches are cylinders under a pixel wide: 3 pixels of 262,144) with no id change around it
 // to say so; the bins keep this cheap where no object's projection reaches.
+//
+// Cut-outs (DESIGN §13) break the first step: the id pass discards a fragment where GL's
+// texture lookup finds the alpha below the cut-off, and GL's filtering is not the tracer's to the
+// bit, so at a mask's edge a surface the tracer keeps may be missing from the depth buffer, in
+// front of t_r. An object whose material cuts out is therefore tested from the eye at every
+// pixel its bin entry covers. The other direction needs nothing: a fragment GL keeps and the
+// tracer cuts away only makes t_r nearer, and a named object the tracer passes through is hit
+// farther on (or not at all: a fallback).
 constexpr Real kDepthSlack = 1e-3_r;
 
 // How much wider than their corners' the objects' depth ranges are kept: the pixel's view depth
@@ -215,9 +223,8 @@ Hit resolve_with(const World& world, const IdImage& ids, Resolve resolve, int x,
     const Real limit = hit.found() ? std::nextafter(hit.t, kInfinity) : kInfinity;
     bool tested = false;
     const auto in_front = [&](const ScreenBins::Entry& other) {
-        if (other.object == object || other.near > z_hit || other.far < z_from ||
-            !other.covers(x, y))
-            return false;
+        if (other.object == object || other.near > z_hit || !other.covers(x, y)) return false;
+        if (other.far < z_from && !world.objects()[other.object].params.cut_out) return false;
         tested = true;
         ++stats.tests;
         const Hit h = world.intersect_one(other.object, ray, limit);

@@ -24,9 +24,11 @@ void RayRecorder::end(Vec3 colour) {
 }
 
 void RayRecorder::surface(const SurfacePoint& point, bool odd_cell,
-                          const std::optional<TexelSample>& texel, Vec3 ambient) {
+                          const std::optional<TexelSample>& texel, Vec3 ambient,
+                          Vec3 emission) {
     RecordedRay& node = open();
     node.surface = point, node.odd_cell = odd_cell, node.texel = texel, node.ambient = ambient;
+    node.emission = emission;
 }
 
 void RayRecorder::light(const LightTerm& term) {

@@ -54,6 +54,7 @@ struct RecordedRay {
     // The base colour texture's lookup, where the material has one and the mesh coordinates.
     std::optional<TexelSample> texel;
     Vec3 ambient{0};       // k_a · I_a
+    Vec3 emission{0};      // E: the material's emission there (DESIGN §13)
     std::vector<LightTerm> lights;
     std::vector<int> children; // reflected, then transmitted
     std::vector<OmittedRay> omitted;
@@ -68,7 +69,7 @@ class RayRecorder {
     void begin(RayKind kind, const Ray& ray, const Hit& hit, Real factor, Real weight, int depth);
     void end(Vec3 colour);
     void surface(const SurfacePoint& point, bool odd_cell, const std::optional<TexelSample>& texel,
-                 Vec3 ambient);
+                 Vec3 ambient, Vec3 emission);
     void light(const LightTerm& term);
     void omitted(RayKind kind, Real weight, OmittedRay::Why why);
 

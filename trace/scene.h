@@ -72,6 +72,8 @@ struct TextureImage {
     std::string name; // the file or glTF image it came from, for messages and `glint explain`
     int width = 0, height = 0;
     std::vector<std::uint8_t> rgb; // width × height × 3
+    // Its alpha channel, width × height bytes, where the file has one; empty: opaque (1).
+    std::vector<std::uint8_t> alpha;
 };
 
 // A base colour texture: an image (shared by every texture that samples it) and how it wraps.
@@ -94,6 +96,14 @@ struct Material {
     // A base colour texture (index into Scene::textures): on meshes with texture coordinates,
     // its colour multiplies the diffuse and ambient colours (docs/SCENES.md, "Textures").
     std::uint32_t texture = kNoTexture;
+    // Cut-outs (DESIGN §13, docs/SCENES.md "Cut-outs"): with `cut_out`, a hit whose alpha (this
+    // factor × the base colour texture's alpha there) is below `alpha_cutoff` is no hit.
+    float alpha = 1.0f;
+    bool cut_out = false;
+    float alpha_cutoff = 0.5f;
+    // Emission (DESIGN §13): this colour × the emission texture's at the hit, added unshadowed.
+    glm::vec3 emission{0.0f};
+    std::uint32_t emission_texture = kNoTexture;
 };
 
 // Triangles as given (counter-clockwise front), object space.
@@ -142,6 +152,21 @@ struct RenderSettings {
     int packet_levels = 0;
 };
 
+struct Scene;
+
+// A model's motion (a glTF animation's node channels, io/gltf_animation.h): places the scene's
+// objects, lights and file camera at any time t ≥ 0 in seconds (DESIGN §13, "Animation time").
+// The meshes, materials and textures do not move: a sequence prepares them once.
+class Animation {
+  public:
+    virtual ~Animation() = default;
+    virtual std::string name() const = 0; // for people: "animation 0 (Walk)"
+    virtual double duration() const = 0;  // its last key time
+    // Sets `scene`'s object transforms (and the lights and camera that animated nodes carry)
+    // to their values at time t; `scene` is the one the animation was read with.
+    virtual void pose(Scene& scene, double t) const = 0;
+};
+
 struct Scene {
     Camera camera;
     glm::vec3 background{0.0f};
@@ -162,6 +187,8 @@ struct Scene {
     // What a model file asked for that glint could not give it (a missing texture or material
     // library): the model renders without it.
     std::vector<std::string> warnings;
+    // A model's animation, where one was asked for (`--time`, `--frames`): none otherwise.
+    std::shared_ptr<const Animation> animation;
 };
 
 // Building blocks of a scene's transform list (column vectors: p' = M·p).

@@ -33,11 +33,18 @@ bool odd_cell(Real size, Vec3 q, bool in_plane) {
 // The base colour texture's lookup at a hit, where the material has a texture and the object is
 // a mesh with texture coordinates (docs/SCENES.md, "Textures"): at the hit's barycentrics, the
 // same in every pixel path, so hybrid and ray mode see the same texels.
-std::optional<TexelSample> texture_at(const World& world, const Phong& m, const Hit& hit) {
-    if (!m.texture) return std::nullopt;
+std::optional<TexelSample> texture_at(const World& world, const Texture* texture, const Hit& hit) {
+    if (!texture) return std::nullopt;
     const Mesh* mesh = world.objects()[hit.object].params.mesh;
     if (!mesh || mesh->uvs.empty()) return std::nullopt;
-    return sample_texture(*m.texture, mesh_uv(*mesh, hit.primitive, hit.u, hit.v));
+    return sample_texture(*texture, mesh_uv(*mesh, hit.primitive, hit.u, hit.v));
+}
+
+// The material's emission at a hit (DESIGN §13): its colour × the emission texture's there.
+Vec3 emission_at(const World& world, const Phong& m, const Hit& hit) {
+    if (m.emission == Vec3(0.0_r)) return Vec3(0.0_r);
+    const std::optional<TexelSample> texel = texture_at(world, m.emission_texture, hit);
+    return texel ? m.emission * Vec3(texel->colour) : m.emission;
 }
 
 // The fraction of a light's colour that passes the glass on the shadow ray from `surface` to
@@ -98,7 +105,7 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoin
                               shape_traits(world.objects()[hit.object].shape).checker_in_plane);
     Vec3 diffuse = odd ? m.checker_diffuse : m.diffuse;
     Vec3 ambient = odd ? m.checker_ambient : m.ambient;
-    const std::optional<TexelSample> texel = texture_at(world, m, hit);
+    const std::optional<TexelSample> texel = texture_at(world, m.texture, hit);
     if (texel) {
         diffuse *= Vec3(texel->colour);
         ambient *= Vec3(texel->colour);
@@ -110,8 +117,10 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoin
             ? ahead.light + static_cast<std::size_t>(ahead.node) * world.lights().size()
             : nullptr;
 
-    Vec3 colour = ambient * world.ambient();
-    if (recorder) recorder->surface(surface, odd, texel, colour);
+    // Emission is added once here, unshadowed; the parent weights it with the rest.
+    const Vec3 emission = emission_at(world, m, hit);
+    Vec3 colour = ambient * world.ambient() + emission;
+    if (recorder) recorder->surface(surface, odd, texel, ambient * world.ambient(), emission);
     for (std::size_t j = 0; j < world.lights().size(); ++j) {
         const Light& light = world.lights()[j];
         const auto [l, n_dot_l] = light_direction(surface, light);

@@ -20,33 +20,58 @@ int wrap_index(double i, int n, Wrap mode) {
     return 0;
 }
 
-} // namespace
+// Where a bilinear lookup at (u, v) reads: the four texels around it (wrapped) and the weights
+// between them. Texel centres sit at half-integers.
+struct Bilinear {
+    double x, y;      // continuous texel coordinates
+    int x0, x1, y0, y1;
+    float wx, wy;
+};
 
-TexelSample sample_texture(const Texture& texture, glm::vec2 uv) {
+Bilinear bilinear(const Texture& texture, glm::vec2 uv) {
     const TextureImage& image = *texture.image;
-    TexelSample s;
     const auto coordinate = [](float c, int n) {
         // Far outside the image only the wrapped position matters; keep the floor exact.
         const double x = std::isfinite(c) ? double(c) * n : 0.0;
         return std::clamp(x, -1e9, 1e9);
     };
-    const double x = coordinate(uv.x, image.width), y = coordinate(uv.y, image.height);
-    s.texel = {static_cast<float>(x), static_cast<float>(y)};
-    // Texel centres sit at half-integers: the four around (x, y) and the weights between them.
-    const double fx = std::floor(x - 0.5), fy = std::floor(y - 0.5);
-    const float wx = static_cast<float>(x - 0.5 - fx), wy = static_cast<float>(y - 0.5 - fy);
-    const int x0 = wrap_index(fx, image.width, texture.wrap_s);
-    const int x1 = wrap_index(fx + 1, image.width, texture.wrap_s);
-    const int y0 = wrap_index(fy, image.height, texture.wrap_t);
-    const int y1 = wrap_index(fy + 1, image.height, texture.wrap_t);
+    Bilinear b;
+    b.x = coordinate(uv.x, image.width), b.y = coordinate(uv.y, image.height);
+    const double fx = std::floor(b.x - 0.5), fy = std::floor(b.y - 0.5);
+    b.wx = static_cast<float>(b.x - 0.5 - fx), b.wy = static_cast<float>(b.y - 0.5 - fy);
+    b.x0 = wrap_index(fx, image.width, texture.wrap_s);
+    b.x1 = wrap_index(fx + 1, image.width, texture.wrap_s);
+    b.y0 = wrap_index(fy, image.height, texture.wrap_t);
+    b.y1 = wrap_index(fy + 1, image.height, texture.wrap_t);
+    return b;
+}
+
+} // namespace
+
+TexelSample sample_texture(const Texture& texture, glm::vec2 uv) {
+    const TextureImage& image = *texture.image;
+    const Bilinear b = bilinear(texture, uv);
+    TexelSample s;
+    s.texel = {static_cast<float>(b.x), static_cast<float>(b.y)};
     const auto texel = [&](int tx, int ty) {
         const std::uint8_t* p = &image.rgb[(static_cast<std::size_t>(ty) * image.width + tx) * 3];
         return glm::vec3(p[0], p[1], p[2]) * (1.0f / 255.0f);
     };
-    s.colour = (1 - wy) * ((1 - wx) * texel(x0, y0) + wx * texel(x1, y0)) +
-               wy * ((1 - wx) * texel(x0, y1) + wx * texel(x1, y1));
-    s.nearest = {wx < 0.5f ? x0 : x1, wy < 0.5f ? y0 : y1};
+    s.colour = (1 - b.wy) * ((1 - b.wx) * texel(b.x0, b.y0) + b.wx * texel(b.x1, b.y0)) +
+               b.wy * ((1 - b.wx) * texel(b.x0, b.y1) + b.wx * texel(b.x1, b.y1));
+    s.nearest = {b.wx < 0.5f ? b.x0 : b.x1, b.wy < 0.5f ? b.y0 : b.y1};
     return s;
+}
+
+float sample_alpha(const Texture& texture, glm::vec2 uv) {
+    const TextureImage& image = *texture.image;
+    if (image.alpha.empty()) return 1.0f;
+    const Bilinear b = bilinear(texture, uv);
+    const auto texel = [&](int tx, int ty) {
+        return image.alpha[static_cast<std::size_t>(ty) * image.width + tx] * (1.0f / 255.0f);
+    };
+    return (1 - b.wy) * ((1 - b.wx) * texel(b.x0, b.y0) + b.wx * texel(b.x1, b.y0)) +
+           b.wy * ((1 - b.wx) * texel(b.x0, b.y1) + b.wx * texel(b.x1, b.y1));
 }
 
 } // namespace glint

@@ -17,4 +17,8 @@ struct TexelSample {
 // byte / 255. Coordinates are wrapped per axis by the texture's modes; NaN reads as 0.
 TexelSample sample_texture(const Texture& texture, glm::vec2 uv);
 
+// The texture's alpha at (u, v), with the same texels and weights as sample_texture's colour
+// (DESIGN §13: the same sampler and filter); 1 where the image has no alpha.
+float sample_alpha(const Texture& texture, glm::vec2 uv);
+
 } // namespace glint

@@ -34,11 +34,16 @@ Hit hit_on(std::uint32_t index, const ShapeHit& h) {
 } // namespace
 
 SceneGeometry::SceneGeometry(const Scene& scene) : textures(scene.textures) {
+    const auto texture = [&](std::uint32_t index) {
+        return index == kNoTexture ? nullptr : &textures[index];
+    };
     for (const Material& m : scene.materials) {
+        std::optional<CutOut> cut_out;
+        if (m.cut_out) cut_out = CutOut{texture(m.texture), m.alpha, m.alpha_cutoff};
         materials.push_back({Vec3(m.ambient), Vec3(m.diffuse), Vec3(m.specular), m.shininess,
                              m.reflectivity, m.transmission, m.ior, m.checker.size,
-                             Vec3(m.checker.diffuse), Vec3(m.checker.ambient),
-                             m.texture == kNoTexture ? nullptr : &textures[m.texture]});
+                             Vec3(m.checker.diffuse), Vec3(m.checker.ambient), texture(m.texture),
+                             cut_out, Vec3(m.emission), texture(m.emission_texture)});
         transmissive |= m.transmission > 0;
     }
     const Stopwatch watch;
@@ -56,10 +61,13 @@ World::World(const Scene& scene, std::shared_ptr<const SceneGeometry> geometry, 
     for (const SceneObject& o : scene.objects) {
         const DMat4 m = to_camera * o.transform;
         const std::optional<ObjectBox> box = unit_box(o, scene.meshes);
-        // The shapes given by vertices are the ones with a mesh (SceneObject::mesh).
+        // The shapes given by vertices are the ones with a mesh (SceneObject::mesh), and the
+        // ones a material can cut out (their triangles have texture coordinates).
+        const bool triangles = shape_traits(o.shape).keys.vertices;
+        const std::optional<CutOut>& cut_out = geometry_->materials[o.material].cut_out;
         const ShapeParams params{o.top_radius, o.open,
-                                 shape_traits(o.shape).keys.vertices ? &geometry_->meshes[o.mesh]
-                                                                     : nullptr};
+                                 triangles ? &geometry_->meshes[o.mesh] : nullptr,
+                                 triangles && cut_out ? &*cut_out : nullptr};
         objects_.push_back({o.shape, make_transform(m), o.material, params, box.has_value(),
                             box ? world_bounds(*box, m) : Bounds{}});
     }
@@ -152,7 +160,7 @@ template <class Counters>
 ShapeHit World::intersect_shape(ShapeKind shape, const ShapeParams& params, const Ray& ray,
                                 Real t_max, Counters& counters, Wanted wanted) {
     if (shape == ShapeKind::mesh) // may stop early; every other shape has its one answer
-        return intersect_mesh(*params.mesh, ray, t_max, counters, wanted);
+        return intersect_mesh(*params.mesh, ray, t_max, counters, wanted, params.cut_out);
     return visit_shape(shape,
                        [&]<class S>(S) { return S::intersect(params, ray, t_max, counters); });
 }
@@ -434,7 +442,8 @@ void World::intersect_one_packet(std::uint32_t index, std::span<const Ray> rays,
     for (int r = 0; r < count; ++r)
         local[r] = object.transform.to_object(rays[r]), t_max[r] = kInfinity;
     NoCounters none;
-    intersect_mesh_packet(*object.params.mesh, local, count, t_max, found, none);
+    intersect_mesh_packet(*object.params.mesh, local, count, t_max, found, none,
+                          object.params.cut_out);
     for (int r = 0; r < count; ++r)
         hits[r] = within_box(object, found[r], LazySlab(rays[r]), t_max[r])
                       ? hit_on(index, found[r])

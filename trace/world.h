@@ -35,6 +35,10 @@ struct Phong {
     Real checker_size; // 0: none
     Vec3 checker_diffuse, checker_ambient;
     const Texture* texture; // base colour texture (in SceneGeometry::textures), or none
+    // Where the material cuts out (DESIGN §13): what its meshes' intersections read.
+    std::optional<CutOut> cut_out;
+    Vec3 emission;                   // added unshadowed at every hit (DESIGN §13)
+    const Texture* emission_texture; // multiplies `emission` where given, or none
 };
 
 struct Light {

@@ -4,6 +4,7 @@
 #include "trace/accel/wide_bvh.h"
 #include "trace/bounds.h"
 #include "trace/shapes/shape.h"
+#include "trace/texture.h"
 
 #include <algorithm>
 #include <array>
@@ -213,13 +214,37 @@ inline void prefetch_block(const Mesh& mesh, std::uint32_t first) {
     prefetch_bytes(&mesh.blocks[first / kTriangleLanes], sizeof(TriangleBlock));
 }
 
+// The texture coordinates at barycentric weights (u, v) of triangle `triangle`, interpolated as
+// the surface is (mesh_surface); the mesh must have them.
+inline glm::vec2 mesh_uv(const Mesh& mesh, std::uint32_t triangle, Real u, Real v) {
+    const glm::uvec3 tri = mesh.triangles[triangle];
+    const float b1 = static_cast<float>(u), b2 = static_cast<float>(v);
+    return (1.0f - b1 - b2) * mesh.uvs[tri.x] + b1 * mesh.uvs[tri.y] + b2 * mesh.uvs[tri.z];
+}
+
+// The alpha of a cut-out material at barycentric weights (u, v) of a triangle (DESIGN §13): the
+// factor times the texture's alpha there, where there is a texture and the mesh has texture
+// coordinates (as shading samples its colour).
+inline float cut_out_alpha(const Mesh& mesh, const CutOut& cut, std::uint32_t triangle, Real u,
+                           Real v) {
+    if (!cut.texture || mesh.uvs.empty()) return cut.alpha;
+    return cut.alpha * sample_alpha(*cut.texture, mesh_uv(mesh, triangle, u, v));
+}
+
+// Whether a hit there is cut away: no hit, the ray goes on.
+inline bool cut_away(const Mesh& mesh, const CutOut& cut, std::uint32_t triangle, Real u, Real v) {
+    return cut_out_alpha(mesh, cut, triangle, u, v) < cut.cutoff;
+}
+
 // The triangles in slots [begin, end) (begin a multiple of kTriangleLanes) for one ray, a block
 // at a time: a triangle replaces `best` when it is hit in (0, t_max) nearer, or as near with a
-// lower triangle index. The one test of intersect_mesh and intersect_mesh_packet.
+// lower triangle index, and is not cut away where `cut` is given. The one test of intersect_mesh
+// and intersect_mesh_packet.
 template <class Counters>
 [[gnu::always_inline]] inline void
 consider_triangles(const Mesh& mesh, std::uint32_t begin, std::uint32_t end,
-                   const WatertightRay& ray, Real t_max, ShapeHit& best, Counters& counters) {
+                   const WatertightRay& ray, Real t_max, ShapeHit& best, Counters& counters,
+                   const CutOut* cut) {
     for (std::uint32_t first = begin; first < end; first += kTriangleLanes) {
         const std::uint32_t lanes = std::min(kTriangleLanes, end - first);
         const TriangleBlock& block = mesh.blocks[first / kTriangleLanes];
@@ -230,7 +255,9 @@ consider_triangles(const Mesh& mesh, std::uint32_t begin, std::uint32_t end,
             const unsigned i = static_cast<unsigned>(__builtin_ctz(m));
             const TriangleHit& h = hits[i];
             const std::uint32_t triangle = block.triangle[i];
-            if (h.t > 0 && h.t < t_max && (h.t < best.t || (h.t == best.t && triangle < best.part)))
+            if (h.t > 0 && h.t < t_max &&
+                (h.t < best.t || (h.t == best.t && triangle < best.part)) &&
+                !(cut && cut_away(mesh, *cut, triangle, h.u, h.v)))
                 best = {h.t, triangle, h.u, h.v};
         }
     }
@@ -243,9 +270,10 @@ consider_triangles(const Mesh& mesh, std::uint32_t begin, std::uint32_t end,
 // tree visits its leaves in (tests/accel_test.cpp, MeshHitsAreTheSameWhateverTheVisitingOrder).
 // Wanted::any stops after the first leaf that holds a hit: a hit, not always the nearest, found
 // exactly when the nearest is (the traversal it stops is the same, its limit only shortened).
+// With `cut`, hits it cuts away are no hits (the traversal goes on past them).
 template <class Counters>
 ShapeHit intersect_mesh(const Mesh& mesh, const Ray& ray, Real t_max, Counters& counters,
-                        Wanted wanted = Wanted::nearest) {
+                        Wanted wanted = Wanted::nearest, const CutOut* cut = nullptr) {
     ShapeHit best;
     const WatertightRay prepared(ray); // once per ray, not per triangle
     Real box_limit = loose(t_max);
@@ -253,7 +281,7 @@ ShapeHit intersect_mesh(const Mesh& mesh, const Ray& ray, Real t_max, Counters& 
         mesh.bvh.traverse_leaves(
             ray, box_limit, counters,
             [&](std::uint32_t begin, std::uint32_t end, Real& limit) {
-                consider_triangles(mesh, begin, end, prepared, t_max, best, counters);
+                consider_triangles(mesh, begin, end, prepared, t_max, best, counters, cut);
                 limit = loose(std::min(best.t, t_max));
                 return wanted == Wanted::any && best.found();
             },
@@ -261,7 +289,7 @@ ShapeHit intersect_mesh(const Mesh& mesh, const Ray& ray, Real t_max, Counters& 
     } else {
         if (!SlabRay(ray).hits(mesh.bounds, box_limit)) return {};
         consider_triangles(mesh, 0, static_cast<std::uint32_t>(mesh.triangles.size()), prepared,
-                           t_max, best, counters);
+                           t_max, best, counters, cut);
     }
     return best;
 }
@@ -273,9 +301,10 @@ ShapeHit intersect_mesh(const Mesh& mesh, const Ray& ray, Real t_max, Counters& 
 // irrelevant); a mesh without one, ray by ray.
 template <class Counters>
 void intersect_mesh_packet(const Mesh& mesh, const Ray* rays, int count, const Real* t_max,
-                           ShapeHit* best, Counters& counters) {
+                           ShapeHit* best, Counters& counters, const CutOut* cut = nullptr) {
     if (mesh.bvh.nodes().empty()) {
-        for (int r = 0; r < count; ++r) best[r] = intersect_mesh(mesh, rays[r], t_max[r], counters);
+        for (int r = 0; r < count; ++r)
+            best[r] = intersect_mesh(mesh, rays[r], t_max[r], counters, Wanted::nearest, cut);
         return;
     }
     std::optional<WatertightRay> prepared[kMaxPacket]; // made on a ray's first leaf
@@ -285,7 +314,7 @@ void intersect_mesh_packet(const Mesh& mesh, const Ray* rays, int count, const R
                              [&](int r, std::uint32_t begin, std::uint32_t end, Real& limit) {
                                  if (!prepared[r]) prepared[r].emplace(rays[r]);
                                  consider_triangles(mesh, begin, end, *prepared[r], t_max[r],
-                                                    best[r], counters);
+                                                    best[r], counters, cut);
                                  limit = loose(std::min(best[r].t, t_max[r]));
                                  return false;
                              });
@@ -312,14 +341,6 @@ inline SurfaceSample mesh_surface(const Mesh& mesh, std::uint32_t triangle, Real
     return {point, facet, error, shading};
 }
 
-// The texture coordinates at barycentric weights (u, v) of triangle `triangle`, interpolated as
-// the surface is (mesh_surface); the mesh must have them.
-inline glm::vec2 mesh_uv(const Mesh& mesh, std::uint32_t triangle, Real u, Real v) {
-    const glm::uvec3 tri = mesh.triangles[triangle];
-    const float b1 = static_cast<float>(u), b2 = static_cast<float>(v);
-    return (1.0f - b1 - b2) * mesh.uvs[tri.x] + b1 * mesh.uvs[tri.y] + b2 * mesh.uvs[tri.z];
-}
-
 // Triangles and meshes in the shape table (trace/shapes/table.h): a triangle is a mesh of one
 // triangle, given by its 3 vertices.
 struct MeshShape {
@@ -336,7 +357,7 @@ struct MeshShape {
     template <class Counters>
     static ShapeHit intersect(const ShapeParams& shape, const Ray& ray, Real t_max,
                               Counters& counters) {
-        return intersect_mesh(*shape.mesh, ray, t_max, counters);
+        return intersect_mesh(*shape.mesh, ray, t_max, counters, Wanted::nearest, shape.cut_out);
     }
     static SurfaceSample surface(const ShapeParams& shape, Vec3, const Hit& hit) {
         return mesh_surface(*shape.mesh, hit.primitive, hit.u, hit.v);

@@ -51,6 +51,15 @@ struct ShapeTraits {
     ShapeKeys keys;
 };
 
+// A material that cuts out (DESIGN §13, docs/SCENES.md "Cut-outs"), as a mesh's intersection
+// reads it: a triangle's hit whose alpha, `alpha` × the texture's alpha at the hit's texture
+// coordinates (where the mesh has them), is below `cutoff` is no hit.
+struct CutOut {
+    const Texture* texture = nullptr; // the base colour texture, or none
+    float alpha = 1.0f;
+    float cutoff = 0.5f;
+};
+
 inline namespace GLINT_PRECISION {
 
 struct Mesh;
@@ -60,6 +69,7 @@ struct ShapeParams {
     Real top_radius = 0;        // cones
     bool open = false;          // cylinders and cones without caps
     const Mesh* mesh = nullptr; // triangles and meshes
+    const CutOut* cut_out = nullptr; // a triangle or mesh whose material cuts out, or none
 };
 
 struct ShapeHit {
