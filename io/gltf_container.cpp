@@ -36,8 +36,9 @@ bool is_data_uri(const std::string& uri) {
     return uri.rfind("data:", 0) == 0;
 }
 
-const std::set<std::string> kKnownExtensions = {"KHR_lights_punctual",
-                                                "KHR_materials_transmission", "KHR_materials_ior"};
+const std::set<std::string> kKnownExtensions = {
+    "KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior",
+    "KHR_materials_emissive_strength", "KHR_texture_transform"};
 
 namespace {
 
@@ -84,6 +85,7 @@ class Precheck {
             fail("", std::string("malformed JSON: ") + e.what());
         }
         if (!root_.is_object()) fail("/", "a glTF file is a JSON object");
+        version();
         extensions(warnings);
         std::map<std::string, std::vector<unsigned char>> files;
         const json& buffers = array("buffers");
@@ -105,6 +107,17 @@ class Precheck {
         if (!root_.contains(key)) return empty;
         if (!root_[key].is_array()) fail(std::string("/") + key, "must be an array");
         return root_[key];
+    }
+
+    // A glTF 1.0 file says so in its asset (its buffers are an object, which would otherwise be
+    // the first complaint).
+    void version() const {
+        if (!root_.contains("asset") || !root_["asset"].is_object()) return;
+        const json& v = root_["asset"]["version"];
+        if (v.is_string() && v.get<std::string>().starts_with("1."))
+            fail("/asset/version", "glTF " + printable(v.get<std::string>()) +
+                                       ": glint reads glTF 2.0 (convert the file, e.g. with "
+                                       "gltf-pipeline or Blender)");
     }
 
     // GLB (glTF 2.0 §4.4): a 12-byte header, a JSON chunk, an optional BIN chunk.

@@ -1,6 +1,7 @@
 #include "io/gltf_loader.h"
 
 #include "io/error.h"
+#include "io/gltf_animation.h"
 #include "io/gltf_container.h"
 #include "io/model_scene.h"
 #include "io/read_text.h"
@@ -10,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <numbers>
@@ -21,6 +23,14 @@ namespace {
 
 // Objects a model may place (nodes × primitives): beyond, a small file would fill the memory.
 constexpr std::size_t kMaxModelObjects = std::size_t{1} << 22;
+// Keys an animation sampler may hold.
+constexpr std::size_t kMaxAnimationKeys = std::size_t{1} << 22;
+
+std::string format_number(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", v);
+    return text;
+}
 
 // glint's reading of a parsed model: its accessors checked and read, its node tree walked into
 // placed meshes, its materials mapped to Phong (docs/SCENES.md, "glTF").
@@ -37,9 +47,11 @@ class Reader {
         scene_.materials.emplace_back(); // 0: glint's default, for primitives with no material
         scene_.material_names.emplace_back("default");
         material_places_.emplace_back("the default material");
+        if (options_.time) read_animation();
         walk_nodes();
         camera();
         lights();
+        if (motion_) scene_.animation = motion_;
         if (!unused_.empty()) {
             std::string list;
             for (const auto& [feature, place] : unused_)
@@ -285,6 +297,46 @@ class Reader {
                 fail(at + "/attributes/TEXCOORD_0", "has a count other than POSITION's");
             for (std::size_t i = 0; i < n; ++i) mesh.uvs.emplace_back(uv[2 * i], uv[2 * i + 1]);
         }
+        if (attribute("COLOR_0") >= 0) {
+            // RGB or RGBA (the alpha is not used), float or normalized unsigned integers.
+            const int index = attribute("COLOR_0");
+            const bool rgba = static_cast<std::size_t>(index) < m_.accessors.size() &&
+                              m_.accessors[static_cast<std::size_t>(index)].type == TINYGLTF_TYPE_VEC4;
+            const int width = rgba ? 4 : 3;
+            const std::vector<double> c = read_accessor(
+                index, rgba ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3, width,
+                {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                 TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                at + "/attributes/COLOR_0", n);
+            if (c.size() != static_cast<std::size_t>(width) * n)
+                fail(at + "/attributes/COLOR_0", "has a count other than POSITION's");
+            for (std::size_t i = 0; i < n; ++i) {
+                glm::vec3 colour;
+                for (int k = 0; k < 3; ++k) {
+                    const double v = c[i * width + k];
+                    if (!(v >= 0 && v <= 1))
+                        fail(pointer("accessors", static_cast<std::size_t>(index)),
+                             "element " + std::to_string(i) + ": colours must be between 0 and 1");
+                    colour[k] = static_cast<float>(v);
+                }
+                mesh.colours.push_back(colour);
+            }
+        }
+        if (attribute("TANGENT") >= 0) {
+            const std::vector<double> t =
+                read_accessor(attribute("TANGENT"), TINYGLTF_TYPE_VEC4, 4,
+                              {TINYGLTF_COMPONENT_TYPE_FLOAT}, at + "/attributes/TANGENT", n);
+            if (t.size() != 4 * n) fail(at + "/attributes/TANGENT", "has a count other than POSITION's");
+            for (std::size_t i = 0; i < n; ++i) {
+                const glm::dvec3 v(t[4 * i], t[4 * i + 1], t[4 * i + 2]);
+                // Where a tangent is not finite, the triangle's own stands in... as none at all.
+                if (!std::isfinite(glm::length(v))) {
+                    mesh.tangents.clear();
+                    break;
+                }
+                mesh.tangents.emplace_back(glm::vec3(v), t[4 * i + 3] < 0 ? -1.0f : 1.0f);
+            }
+        }
         std::vector<std::uint32_t> corners;
         if (p.indices >= 0) {
             const std::string indices_at = pointer("accessors", static_cast<std::size_t>(p.indices));
@@ -366,15 +418,18 @@ class Reader {
         out.reflectivity = static_cast<float>(metallic * (1 - roughness) * (1 - roughness));
         out.transmission = static_cast<float>(transmission);
         out.ior = static_cast<float>(ior);
-        if (pbr.baseColorTexture.index >= 0) out.texture = texture(pbr.baseColorTexture, pbr_at);
+        if (pbr.baseColorTexture.index >= 0)
+            out.texture = texture(pbr.baseColorTexture, pbr_at + "/baseColorTexture");
         if (pbr.metallicRoughnessTexture.index >= 0) unused("metallicRoughnessTexture", at);
-        if (g.normalTexture.index >= 0) unused("normalTexture", at);
+        if (g.normalTexture.index >= 0) {
+            out.normal_texture = texture(g.normalTexture, at + "/normalTexture");
+            if (!(std::abs(g.normalTexture.scale) <= 1e3))
+                fail(at + "/normalTexture/scale", "must be a number within ±1000");
+            out.normal_scale = static_cast<float>(g.normalTexture.scale);
+        }
         if (g.occlusionTexture.index >= 0) unused("occlusionTexture", at);
-        if (g.emissiveTexture.index >= 0) unused("emissiveTexture", at);
-        if (g.emissiveFactor.size() == 3 &&
-            (g.emissiveFactor[0] > 0 || g.emissiveFactor[1] > 0 || g.emissiveFactor[2] > 0))
-            unused("emissiveFactor", at);
-        if (g.alphaMode != "OPAQUE") unused("alphaMode " + printable(g.alphaMode), at);
+        emission(g, at, out);
+        alpha_mode(g, at, pbr_at, out);
         for (const auto& [extension, value] : g.extensions)
             if (!kKnownExtensions.contains(extension))
                 unused("extension " + printable(extension), at);
@@ -386,14 +441,102 @@ class Reader {
         return materials_.emplace(index, k).first->second;
     }
 
-    // The base colour texture `info` names, or kNoTexture (with a warning) where it cannot be
-    // used; its image decoded once however many textures sample it.
-    std::uint32_t texture(const tinygltf::TextureInfo& info, const std::string& pbr_at) {
-        const std::string at = pbr_at + "/baseColorTexture";
+    // Emission (DESIGN §13): emissiveFactor × emissiveStrength, times the emissive texture.
+    void emission(const tinygltf::Material& g, const std::string& at, Material& out) {
+        if (g.emissiveFactor.size() != 3) fail(at + "/emissiveFactor", "must have 3 numbers");
+        double strength = 1;
+        if (const auto it = g.extensions.find("KHR_materials_emissive_strength");
+            it != g.extensions.end() && it->second.Has("emissiveStrength")) {
+            strength = it->second.Get("emissiveStrength").GetNumberAsDouble();
+            if (!(strength >= 0 && strength <= 1e6))
+                fail(at + "/extensions/KHR_materials_emissive_strength/emissiveStrength",
+                     "must be between 0 and 1e6");
+        }
+        for (int c = 0; c < 3; ++c) {
+            const double v = g.emissiveFactor[static_cast<std::size_t>(c)];
+            if (!(v >= 0 && v <= 1))
+                fail(at + "/emissiveFactor/" + std::to_string(c), "must be between 0 and 1");
+            out.emission[c] = static_cast<float>(v * strength);
+        }
+        if (g.emissiveTexture.index >= 0 && out.emission != glm::vec3(0.0f))
+            out.emission_texture = texture(g.emissiveTexture, at + "/emissiveTexture");
+    }
+
+    // The base colour's alpha (docs/SCENES.md, "Cut-outs and blending"): MASK cuts out where it
+    // is below alphaCutoff (DESIGN §13); BLEND blends the factor's alpha as a transmission of
+    // 1 − alpha with ior 1 (a texture's alpha is not blended, with a warning); OPAQUE ignores it.
+    void alpha_mode(const tinygltf::Material& g, const std::string& at, const std::string& pbr_at,
+               Material& out) {
+        const double a = g.pbrMetallicRoughness.baseColorFactor[3];
+        if (!(a >= 0 && a <= 1)) fail(pbr_at + "/baseColorFactor/3", "must be between 0 and 1");
+        if (g.alphaMode == "MASK") {
+            if (!(g.alphaCutoff >= 0 && g.alphaCutoff <= 1))
+                fail(at + "/alphaCutoff", "must be between 0 and 1");
+            out.cut_out = true;
+            out.alpha = static_cast<float>(a);
+            out.alpha_cutoff = static_cast<float>(g.alphaCutoff);
+        } else if (g.alphaMode == "BLEND") {
+            if (g.pbrMetallicRoughness.baseColorTexture.index >= 0)
+                unused("a base colour texture's alpha under alphaMode BLEND (the factor's "
+                       "alpha blends)", at);
+            // What shows of the surface is alpha of it; the rest passes straight through.
+            const auto keep = static_cast<float>(a);
+            out.diffuse *= keep, out.ambient *= keep, out.specular *= keep;
+            out.reflectivity *= keep;
+            out.transmission = 1 - keep * (1 - out.transmission);
+            if (a < 1) out.ior = 1;
+        } else if (g.alphaMode != "OPAQUE") {
+            fail(at + "/alphaMode", "must be OPAQUE, MASK or BLEND, not '" +
+                                        printable(g.alphaMode) + "'");
+        }
+    }
+
+    // KHR_texture_transform on a texture reference: uv' = T(offset) · R(rotation) · S(scale) · uv,
+    // as the extension writes it; its texCoord, where given, overrides the reference's.
+    glm::mat3 uv_transform(const tinygltf::ExtensionMap& extensions, const std::string& at,
+                           int& tex_coord) const {
+        const auto it = extensions.find("KHR_texture_transform");
+        if (it == extensions.end()) return glm::mat3(1.0f);
+        const tinygltf::Value& v = it->second;
+        const std::string ext_at = at + "/extensions/KHR_texture_transform";
+        const auto pair = [&](const char* key, double fallback) {
+            glm::dvec2 out(fallback);
+            if (!v.Has(key)) return out;
+            const tinygltf::Value& a = v.Get(key);
+            if (!a.IsArray() || a.ArrayLen() != 2)
+                fail(ext_at + "/" + key, "must have 2 numbers");
+            for (int k = 0; k < 2; ++k) {
+                out[k] = a.Get(k).GetNumberAsDouble();
+                if (!(std::abs(out[k]) <= 1e6))
+                    fail(ext_at + "/" + key + "/" + std::to_string(k), "must be a number within ±1e6");
+            }
+            return out;
+        };
+        const glm::dvec2 offset = pair("offset", 0), scale = pair("scale", 1);
+        double rotation = 0;
+        if (v.Has("rotation")) {
+            rotation = v.Get("rotation").GetNumberAsDouble();
+            if (!(std::abs(rotation) <= 1e6)) fail(ext_at + "/rotation", "must be a number within ±1e6");
+        }
+        if (v.Has("texCoord")) tex_coord = v.Get("texCoord").GetNumberAsInt();
+        const double c = std::cos(rotation), s = std::sin(rotation);
+        // Columns (glm): the extension's matrix T · R · S.
+        glm::dmat3 m(1.0);
+        m[0] = {c * scale.x, -s * scale.x, 0};
+        m[1] = {s * scale.y, c * scale.y, 0};
+        m[2] = {offset.x, offset.y, 1};
+        return glm::mat3(m);
+    }
+
+    // The texture `info` names (at `at`), or kNoTexture (with a warning) where it cannot be used;
+    // its image decoded once however many textures sample it.
+    template <class Info> std::uint32_t texture(const Info& info, const std::string& at) {
         if (static_cast<std::size_t>(info.index) >= m_.textures.size())
             fail(at + "/index", "no texture " + std::to_string(info.index));
-        if (info.texCoord != 0) {
-            unused("texCoord " + std::to_string(info.texCoord) + " (glint reads TEXCOORD_0)", at);
+        int tex_coord = info.texCoord;
+        const glm::mat3 transform = uv_transform(info.extensions, at, tex_coord);
+        if (tex_coord != 0) {
+            unused("texCoord " + std::to_string(tex_coord) + " (glint reads TEXCOORD_0)", at);
             return kNoTexture;
         }
         const tinygltf::Texture& t = m_.textures[static_cast<std::size_t>(info.index)];
@@ -414,6 +557,7 @@ class Reader {
             out.wrap_t = wrap(s.wrapT, sampler_at + "/wrapT");
         }
         out.image = image(t.source);
+        out.uv_transform = transform;
         if (!out.image) return kNoTexture;
         scene_.textures.push_back(out);
         return static_cast<std::uint32_t>(scene_.textures.size() - 1);
@@ -455,6 +599,126 @@ class Reader {
         return images_.emplace(index, out).first->second;
     }
 
+    // ---- animation -------------------------------------------------------------------------
+
+    // The chosen animation's channels and keys, checked (docs/SCENES.md, "Animation"): what
+    // the walk and GltfMotion::pose read.
+    void read_animation() {
+        const int count = static_cast<int>(m_.animations.size());
+        const int k = options_.animation;
+        if (count == 0 && k == 0) {
+            scene_.notes.push_back("the file has no animations: --time places nothing");
+            return;
+        }
+        if (k < 0 || k >= count)
+            throw SceneError(name_ + ": --animation " + std::to_string(k) + ": the file has " +
+                             (count == 0 ? "no animations"
+                                         : std::to_string(count) + " animation(s), 0 to " +
+                                               std::to_string(count - 1)));
+        const tinygltf::Animation& a = m_.animations[static_cast<std::size_t>(k)];
+        const std::string at = pointer("animations", static_cast<std::size_t>(k));
+        auto motion = std::make_shared<GltfMotion>();
+        motion->label = "animation " + std::to_string(k) +
+                        (a.name.empty() ? "" : " (" + printable(a.name) + ")");
+        motion->nodes.resize(m_.nodes.size());
+        for (std::size_t i = 0; i < a.channels.size(); ++i) {
+            const tinygltf::AnimationChannel& c = a.channels[i];
+            const std::string channel_at = at + "/channels/" + std::to_string(i);
+            if (c.target_node < 0) {
+                unused("animation channels without a target node", channel_at);
+                continue;
+            }
+            if (static_cast<std::size_t>(c.target_node) >= m_.nodes.size())
+                fail(channel_at + "/target/node", "no node " + std::to_string(c.target_node));
+            TrsPath path;
+            if (c.target_path == "translation") path = TrsPath::translation;
+            else if (c.target_path == "rotation") path = TrsPath::rotation;
+            else if (c.target_path == "scale") path = TrsPath::scale;
+            else if (c.target_path == "weights") {
+                unused("morph target weights (animation channels)", channel_at);
+                continue;
+            } else {
+                fail(channel_at + "/target/path",
+                     "must be translation, rotation, scale or weights, not '" +
+                         printable(c.target_path) + "'");
+            }
+            if (c.sampler < 0 || static_cast<std::size_t>(c.sampler) >= a.samplers.size())
+                fail(channel_at + "/sampler", "no sampler " + std::to_string(c.sampler));
+            if (!m_.nodes[static_cast<std::size_t>(c.target_node)].matrix.empty())
+                fail(pointer("nodes", static_cast<std::size_t>(c.target_node)) + "/matrix",
+                     "an animated node must be placed by translation, rotation and scale, not "
+                     "a matrix (" + channel_at + " moves it)");
+            motion->samplers.push_back(keys(a.samplers[static_cast<std::size_t>(c.sampler)],
+                                            at + "/samplers/" + std::to_string(c.sampler), path));
+            motion->channels.push_back({static_cast<std::size_t>(c.target_node), path,
+                                        motion->samplers.size() - 1});
+        }
+        motion_ = std::move(motion);
+    }
+
+    // A sampler's keys for a channel of `path`: times strictly increasing, outputs of the path's
+    // type, one (three for CUBICSPLINE) a key.
+    KeyFrames keys(const tinygltf::AnimationSampler& s, const std::string& at, TrsPath path) const {
+        KeyFrames out;
+        if (s.interpolation.empty() || s.interpolation == "LINEAR")
+            out.interpolation = Interpolation::linear;
+        else if (s.interpolation == "STEP")
+            out.interpolation = Interpolation::step;
+        else if (s.interpolation == "CUBICSPLINE")
+            out.interpolation = Interpolation::cubic_spline;
+        else
+            fail(at + "/interpolation", "must be LINEAR, STEP or CUBICSPLINE, not '" +
+                                            printable(s.interpolation) + "'");
+        out.times = read_accessor(s.input, TINYGLTF_TYPE_SCALAR, 1, {TINYGLTF_COMPONENT_TYPE_FLOAT},
+                                  at + "/input", kMaxAnimationKeys);
+        const std::string input_at = pointer("accessors", static_cast<std::size_t>(s.input));
+        for (std::size_t k = 0; k < out.times.size(); ++k) {
+            if (!std::isfinite(out.times[k]))
+                fail(input_at, "key time " + std::to_string(k) + " is not a finite number");
+            if (k > 0 && !(out.times[k] > out.times[k - 1]))
+                fail(input_at, "key times must increase: key " + std::to_string(k) + " (" +
+                                   format_number(out.times[k]) + " s) does not come after key " +
+                                   std::to_string(k - 1) + " (" +
+                                   format_number(out.times[k - 1]) + " s)");
+        }
+        const bool rotation = path == TrsPath::rotation;
+        out.width = rotation ? 4 : 3;
+        const std::size_t per_key = out.interpolation == Interpolation::cubic_spline ? 3 : 1;
+        const std::size_t wanted = out.times.size() * per_key;
+        const std::string use = at + "/output";
+        out.values = rotation
+                         ? read_accessor(s.output, TINYGLTF_TYPE_VEC4, 4,
+                                         {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
+                                          TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                                          TINYGLTF_COMPONENT_TYPE_SHORT,
+                                          TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                                         use, kMaxAnimationKeys * 3)
+                         : read_accessor(s.output, TINYGLTF_TYPE_VEC3, 3,
+                                         {TINYGLTF_COMPONENT_TYPE_FLOAT}, use,
+                                         kMaxAnimationKeys * 3);
+        const std::string output_at = pointer("accessors", static_cast<std::size_t>(s.output));
+        const std::size_t count = out.values.size() / static_cast<std::size_t>(out.width);
+        if (count != wanted)
+            fail(output_at + "/count",
+                 std::to_string(count) + " elements, where the sampler's " +
+                     std::to_string(out.times.size()) + " keys need " + std::to_string(wanted) +
+                     (per_key == 3 ? " (CUBICSPLINE: in-tangent, value, out-tangent a key)" : ""));
+        for (std::size_t i = 0; i < out.values.size(); ++i)
+            if (!(std::abs(out.values[i]) <= kMaxCoordinate))
+                fail(output_at, "element " + std::to_string(i / out.width) +
+                                    ": values must be finite and within ±1e15");
+        if (rotation)
+            for (std::size_t k = 0; k < count; k += per_key) {
+                const std::size_t v = (k + (per_key == 3 ? 1 : 0)) * 4;
+                const glm::dvec4 q(out.values[v], out.values[v + 1], out.values[v + 2],
+                                   out.values[v + 3]);
+                if (!(glm::length(q) > 0))
+                    fail(output_at, "element " + std::to_string(k + (per_key == 3 ? 1 : 0)) +
+                                        ": a rotation must be a unit quaternion");
+            }
+        return out;
+    }
+
     // ---- nodes -----------------------------------------------------------------------------
 
     static DMat4 local_matrix(const tinygltf::Node& n, const std::string& at,
@@ -488,6 +752,18 @@ class Reader {
             s = scale_matrix({n.scale[0], n.scale[1], n.scale[2]});
         }
         return t * r * s;
+    }
+
+    // A node's own TRS (local_matrix has checked it).
+    static NodeTrs node_trs(const tinygltf::Node& n) {
+        NodeTrs trs;
+        if (n.translation.size() == 3)
+            trs.translation = {n.translation[0], n.translation[1], n.translation[2]};
+        if (n.rotation.size() == 4)
+            trs.rotation = glm::normalize(
+                glm::dvec4(n.rotation[0], n.rotation[1], n.rotation[2], n.rotation[3]));
+        if (n.scale.size() == 3) trs.scale = {n.scale[0], n.scale[1], n.scale[2]};
+        return trs;
     }
 
     struct Placed {
@@ -538,11 +814,22 @@ class Reader {
                 fail(at, "node " + std::to_string(node) + " is placed a second time (a node has "
                                                           "at most one parent)");
             state[k] = open;
-            const DMat4 world = parent * local_matrix(m_.nodes[k], pointer("nodes", k), failing);
+            DMat4 local = local_matrix(m_.nodes[k], pointer("nodes", k), failing);
+            if (motion_) {
+                GltfMotion::Node& n = motion_->nodes[k];
+                n.has_matrix = m_.nodes[k].matrix.size() == 16;
+                n.matrix = local;
+                n.trs = node_trs(m_.nodes[k]);
+                for (const int child : m_.nodes[k].children)
+                    n.children.push_back(static_cast<std::size_t>(child));
+                if (motion_->moves(k)) local = motion_->local(k, *options_.time);
+            }
+            const DMat4 world = parent * local;
             place(k, world);
             stack.push_back({k, world});
         };
         for (std::size_t r = 0; r < roots.size(); ++r) {
+            if (motion_ && roots[r] >= 0) motion_->roots.push_back(static_cast<std::size_t>(roots[r]));
             std::vector<Frame> stack;
             enter(roots[r], roots_at + "/" + std::to_string(r), DMat4(1.0), stack, "the scene");
             while (!stack.empty()) {
@@ -579,6 +866,7 @@ class Reader {
                 o.material = material;
                 o.transform = world;
                 scene_.objects.push_back(o);
+                if (motion_) motion_->object_nodes.push_back(k);
                 scene_.object_names.push_back(printable(n.name.empty() ? mesh_name : n.name));
                 object_places_.push_back(at);
             }
@@ -632,10 +920,8 @@ class Reader {
         const Placed& placed = cameras_.at(*chosen);
         const tinygltf::Camera& c = m_.cameras[static_cast<std::size_t>(*chosen)];
         camera_place_ = pointer("cameras", static_cast<std::size_t>(*chosen));
-        // DESIGN §12: the node's −Z is the viewing direction, its +Y up.
-        scene_.camera.eye = DVec3(placed.world * glm::dvec4(0, 0, 0, 1));
-        scene_.camera.look_at = scene_.camera.eye + DVec3(placed.world * glm::dvec4(0, 0, -1, 0));
-        scene_.camera.up = DVec3(placed.world * glm::dvec4(0, 1, 0, 0));
+        place_camera(scene_.camera, placed.world);
+        if (motion_) motion_->camera_node = placed.node;
         scene_.camera.fov_y = c.perspective.yfov * (180.0 / std::numbers::pi);
         camera_place_node_ = pointer("nodes", placed.node);
     }
@@ -671,6 +957,9 @@ class Reader {
                 fail(at + "/type", "unknown light type '" + printable(l.type) + "'");
             }
             scene_.lights.push_back(light);
+            // A directional light stands far off along its direction: it does not follow.
+            if (motion_)
+                motion_->light_nodes.push_back(l.type == "directional" ? ~std::size_t{0} : p.node);
             light_places_.push_back(at);
         }
         if (lights_.empty()) {
@@ -732,6 +1021,7 @@ class Reader {
     std::map<std::string, std::string> unused_;
     std::vector<std::string> material_places_, object_places_, light_places_;
     std::vector<MeshPlace> mesh_places_;
+    std::shared_ptr<GltfMotion> motion_; // the animation asked for (options_.time), or none
     std::string camera_place_, camera_place_node_;
 };
 

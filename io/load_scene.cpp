@@ -19,6 +19,8 @@ Scene load_scene(const std::filesystem::path& path, const ModelOptions& options)
     if (extension == ".gltf" || extension == ".glb") return load_gltf(path, options);
     if (options.camera)
         throw SceneError(name + ": --camera picks a glTF file's camera; this file has none");
+    if (options.animation != 0)
+        throw SceneError(name + ": --animation picks a glTF file's animation; this file has none");
     if (extension == ".obj") return obj_scene(path, options);
     // A name without an extension is read as a JSON scene, as it always was.
     if (!extension.empty() && extension != ".json" && extension != ".nff")

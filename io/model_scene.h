@@ -15,6 +15,11 @@ namespace glint {
 struct ModelOptions {
     std::optional<int> camera; // `--camera N`: look through a glTF file's camera N
     std::optional<std::pair<int, int>> size; // `--size`: width and height
+    // `--time T` (or a sequence's first frame): place a glTF model's nodes at time T of its
+    // animation `animation` (`--animation K`, default the first; DESIGN §13). Unset: the
+    // nodes' own TRS, and no animation is read.
+    std::optional<double> time;
+    int animation = 0;
 };
 
 // The framing rule's fixed viewing direction: from the front (+Z, the side glTF's and most OBJ

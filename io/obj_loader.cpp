@@ -425,12 +425,21 @@ ObjModel load_obj(const std::filesystem::path& path) {
             return std::optional<std::string>();
         }
     });
+    // Windows exporters write `.\tex.jpg`: where no file has that name, its backslashes are
+    // read as separators.
+    const auto texture_path = [](const std::filesystem::path& dir, const std::string& file) {
+        std::filesystem::path literal = dir / file;
+        if (file.find('\\') == std::string::npos || std::filesystem::exists(literal)) return literal;
+        std::string slashed = file;
+        std::replace(slashed.begin(), slashed.end(), '\\', '/');
+        return dir / slashed;
+    };
     std::map<std::string, std::shared_ptr<const TextureImage>> images; // each file decoded once
     for (ObjPart& part : model.parts) {
         if (part.texture_file.empty() || part.mesh.uvs.empty()) continue;
         auto [it, added] = images.emplace(part.texture_file, nullptr);
         if (added)
-            if (auto image = load_texture(dir / part.texture_file,
+            if (auto image = load_texture(texture_path(dir, part.texture_file),
                                           path.string() + ": material '" +
                                               printable(part.material_name) + "' map_Kd",
                                           model.warnings))

@@ -666,6 +666,10 @@ void ItemBuffer::Impl::draw_cut_outs(const World& world, const glm::dmat4& clip,
         glUniform1f(uniform("alpha"), o.params.cut_out->alpha);
         glUniform1f(uniform("cutoff"), o.params.cut_out->cutoff);
         glUniform1i(uniform("textured"), d.alpha_texture != 0);
+        const glm::mat3 uv_transform = o.params.cut_out->texture
+                                           ? o.params.cut_out->texture->uv_transform
+                                           : glm::mat3(1.0f);
+        glUniformMatrix3fv(uniform("uv_transform"), 1, GL_FALSE, glm::value_ptr(uv_transform));
         glBindTexture(GL_TEXTURE_2D, d.alpha_texture);
         glBindVertexArray(geometries[d.geometry].vao);
         glDrawElements(GL_TRIANGLES, geometries[d.geometry].index_count, GL_UNSIGNED_INT, nullptr);

@@ -95,7 +95,9 @@ TEST_P(GltfHierarchy, SeesThePrimaryHitsOfTheJsonSceneWithTheComposedMatrices) {
     const GltfBuilder b = hierarchy();
     const Scene json_scene = composed_json();
     for (const std::string& bytes : {b.gltf(), b.glb()}) {
-        const Scene gltf = parse_gltf(bytes, "nested.gltf", {}, {.camera = std::nullopt, .size = std::pair{96, 72}});
+        ModelOptions options;
+        options.size = std::pair{96, 72};
+        const Scene gltf = parse_gltf(bytes, "nested.gltf", {}, options);
         EXPECT_EQ(gltf.meshes.size(), 1u); // one mesh, placed three times
         ASSERT_EQ(gltf.objects.size(), 3u);
         EXPECT_EQ(gltf.camera, json_scene.camera);

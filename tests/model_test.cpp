@@ -3,6 +3,7 @@
 // a glTF's sampler and coordinates are read; bad glTF input exits 2 naming the file and the
 // place, while what a model only decorates itself with is a warning.
 #include "gltf_builder.h"
+#include "rgba_png.h"
 #include "run_glint.h"
 
 #include "io/error.h"
@@ -131,6 +132,61 @@ TEST(Model, AGltfTextureIsReadWithItsSamplerAndCoordinates) {
     EXPECT_EQ(read_png(dir / "ray.png").rgb, read_png(dir / "hybrid.png").rgb);
 }
 
+// MASK, BLEND and emission as DESIGN §13 and docs/SCENES.md read them: a masked quad (alpha 0 on
+// its left half) in front of an emissive one. The texture's alpha is kept beside its colour,
+// the cut-off and factor on the material; through the left half the emissive quad shows, its
+// red above what the default lights give a grey quad; hybrid equals ray byte for byte.
+TEST(Model, AGltfMaskBlendAndEmissionAreReadAsTheDesignSays) {
+    const fs::path dir = fresh_dir();
+    GltfBuilder b;
+    const int texture = b.texture(testing::rgba_png(2, 1, {255, 255, 255, 0, 255, 255, 255, 255}),
+                                  {{"wrapS", 33071}, {"wrapT", 33071}});
+    b.doc["materials"] = {
+        {{"alphaMode", "MASK"},
+         {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", texture}}}, {"metallicFactor", 0}}}},
+        {{"emissiveFactor", {1, 0.5, 0}},
+         {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 2}}}}},
+         {"pbrMetallicRoughness", {{"baseColorFactor", {0.2, 0.2, 0.2, 1}}, {"metallicFactor", 0}}}},
+        {{"alphaMode", "BLEND"},
+         {"pbrMetallicRoughness", {{"baseColorFactor", {1, 1, 1, 0.25}}, {"metallicFactor", 0}}}}};
+    const std::vector<float> uv = {0, 1, 1, 1, 1, 0, 0, 0};
+    const std::vector<std::uint32_t> corners = {0, 1, 2, 0, 2, 3};
+    b.node({{"mesh", b.mesh({-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0}, corners, 0, uv)}});
+    b.node({{"mesh", b.mesh({-2, -2, -1, 2, -2, -1, 2, 2, -1, -2, 2, -1}, corners, 1, uv)}});
+    b.node({{"mesh", b.mesh({3, 3, -1, 4, 3, -1, 4, 4, -1}, {0, 1, 2}, 2)}});
+    const Scene scene = parse_gltf(b.glb(), "cut.glb", {});
+    EXPECT_TRUE(scene.warnings.empty());
+    ASSERT_EQ(scene.materials.size(), 4u);
+    ASSERT_EQ(scene.textures.size(), 1u);
+    EXPECT_EQ(scene.textures[0].image->alpha, (std::vector<std::uint8_t>{0, 255}));
+    const Material& mask = scene.materials[1];
+    EXPECT_TRUE(mask.cut_out);
+    EXPECT_EQ(mask.alpha, 1.0f);
+    EXPECT_EQ(mask.alpha_cutoff, 0.5f);
+    EXPECT_EQ(scene.materials[2].emission, glm::vec3(2, 1, 0));
+    EXPECT_FALSE(scene.materials[2].cut_out);
+    const Material& blend = scene.materials[3];
+    EXPECT_FLOAT_EQ(blend.transmission, 0.75f);
+    EXPECT_EQ(blend.ior, 1.0f);
+    EXPECT_FLOAT_EQ(blend.diffuse.x, 0.25f);
+    write(dir / "cut.glb", b.glb());
+    ASSERT_EQ(glint(dir, "render cut.glb --size 64x48 -o ray.png --mode ray").exit_code, 0);
+    ASSERT_EQ(glint(dir, "render cut.glb --size 64x48 -o hybrid.png --mode hybrid").exit_code, 0);
+    const Image ray = read_png(dir / "ray.png");
+    EXPECT_EQ(ray.rgb, read_png(dir / "hybrid.png").rgb);
+    // The framed model's centre is off to the right (the blended triangle): find the masked
+    // quad's middle row by the front quad's colour (white, lit) on its right half.
+    int emissive = 0, white = 0;
+    for (int y = 0; y < ray.height; ++y)
+        for (int x = 0; x < ray.width; ++x) {
+            const std::uint8_t* p = ray.pixel(x, y);
+            emissive += p[0] == 255 && p[2] < 64;
+            white += p[0] > 100 && p[0] == p[1] && p[1] == p[2];
+        }
+    EXPECT_GT(emissive, 20);
+    EXPECT_GT(white, 20);
+}
+
 // What a glTF only decorates itself with (a texture file that is missing, features glint does
 // not draw) is a warning; the model renders.
 TEST(Model, AMissingTextureAndUnusedFeaturesAreWarnings) {
@@ -139,7 +195,7 @@ TEST(Model, AMissingTextureAndUnusedFeaturesAreWarnings) {
     b.doc["images"].push_back({{"uri", "missing.png"}});
     b.doc["textures"].push_back({{"source", 0}});
     b.doc["materials"].push_back({{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
-                                  {"emissiveFactor", {1, 0, 0}}});
+                                  {"occlusionTexture", {{"index", 0}}}});
     b.node({{"mesh", b.mesh({0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 2}, 0, {0, 0, 1, 0, 0, 1})}});
     write(dir / "m.gltf", b.gltf());
     const Outcome r = glint(dir, "render m.gltf --size 32x24 -o m.png");
@@ -148,7 +204,7 @@ TEST(Model, AMissingTextureAndUnusedFeaturesAreWarnings) {
                          "'missing.png'"),
               std::string::npos)
         << r.err;
-    EXPECT_NE(r.err.find("emissiveFactor (/materials/0)"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("occlusionTexture (/materials/0)"), std::string::npos) << r.err;
 }
 
 // Bad input: each case exits 2 naming the file and the place, and writes nothing.
@@ -171,6 +227,13 @@ std::string with_float(GltfBuilder& b, std::size_t at, std::uint32_t bits) {
     json d = json::parse(b.gltf());
     d["buffers"][0]["uri"] = "data:application/octet-stream;base64," + GltfBuilder::base64(bin);
     return d.dump();
+}
+
+// The triangle's primitive given material 0, whose fields are `material`.
+std::string with_material(GltfBuilder& b, json material) {
+    b.doc["materials"].push_back(std::move(material));
+    b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+    return b.gltf();
 }
 
 std::vector<BadGltf> bad_gltf() {
@@ -243,6 +306,33 @@ std::vector<BadGltf> bad_gltf() {
          },
          "bad.gltf: /extensionsRequired/0: requires extension '\\x1b[31mred', which glint does "
          "not support"},
+        {"glTF 1.0",
+         [](GltfBuilder& b) {
+             b.doc["asset"]["version"] = "1.0";
+             b.doc["buffers"] = json::object();
+             return b.doc.dump();
+         },
+         "bad.gltf: /asset/version: glTF 1.0: glint reads glTF 2.0"},
+        {"unknown alpha mode",
+         [](GltfBuilder& b) { return with_material(b, {{"alphaMode", "CUTOUT"}}); },
+         "bad.gltf: /materials/0/alphaMode: must be OPAQUE, MASK or BLEND, not 'CUTOUT'"},
+        {"alpha cut-off out of range",
+         [](GltfBuilder& b) {
+             return with_material(b, {{"alphaMode", "MASK"}, {"alphaCutoff", 1.5}});
+         },
+         "bad.gltf: /materials/0/alphaCutoff: must be between 0 and 1"},
+        {"emission out of range",
+         [](GltfBuilder& b) { return with_material(b, {{"emissiveFactor", {0, 2, 0}}}); },
+         "bad.gltf: /materials/0/emissiveFactor/1: must be between 0 and 1"},
+        {"negative emissive strength",
+         [](GltfBuilder& b) {
+             return with_material(
+                 b, {{"emissiveFactor", {1, 1, 1}},
+                     {"extensions",
+                      {{"KHR_materials_emissive_strength", {{"emissiveStrength", -1}}}}}});
+         },
+         "bad.gltf: /materials/0/extensions/KHR_materials_emissive_strength/emissiveStrength: "
+         "must be between 0 and 1e6"},
     };
 }
 
@@ -287,7 +377,9 @@ TEST(Model, CameraPicksAGltfCameraAndIsRefusedElsewhere) {
     }
     const std::string bytes = b.gltf();
     EXPECT_NEAR(parse_gltf(bytes, "c.gltf", {}).camera.fov_y, 0.5 * 180 / M_PI, 1e-9);
-    EXPECT_NEAR(parse_gltf(bytes, "c.gltf", {}, {.camera = 1, .size = std::nullopt}).camera.fov_y, 0.25 * 180 / M_PI, 1e-9);
+    ModelOptions second;
+    second.camera = 1;
+    EXPECT_NEAR(parse_gltf(bytes, "c.gltf", {}, second).camera.fov_y, 0.25 * 180 / M_PI, 1e-9);
     write(dir / "c.gltf", bytes);
     Outcome r = glint(dir, "render c.gltf --camera 2 -o c.png");
     EXPECT_EQ(r.exit_code, 2);

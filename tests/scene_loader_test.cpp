@@ -236,7 +236,7 @@ TEST(SceneCheck, EachRuleNamesThePartsModelPathThroughTheLoadersPlaces) {
     bad.render.samples = 17;
     EXPECT_EQ(refusal(bad), "here: render/samples: must be between 1 and 16, got 17");
     bad = scene;
-    bad.meshes.push_back({{glm::vec3(0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0)}, {{0, 1, 3}}, {}, {}});
+    bad.meshes.push_back({{glm::vec3(0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0)}, {{0, 1, 3}}, {}, {}, {}, {}});
     EXPECT_EQ(refusal(bad), "here: meshes/0/indices/2: must be between 0 and 2, got 3");
     bad = scene;
     SceneObject far;

@@ -23,6 +23,13 @@ DMat4 rotation_matrix(DVec3 axis, double degrees) {
     return glm::rotate(DMat4(1.0), glm::radians(degrees), glm::normalize(axis));
 }
 
+Camera orbit_camera(const Camera& camera, int k, int n) {
+    Camera out = camera;
+    const DMat4 turn = rotation_matrix({0, 1, 0}, 360.0 * k / n);
+    out.eye = camera.look_at + DVec3(turn * glm::dvec4(camera.eye - camera.look_at, 0.0));
+    return out;
+}
+
 namespace {
 
 // Frobenius norm of a 3×3 matrix.

@@ -76,10 +76,13 @@ struct TextureImage {
     std::vector<std::uint8_t> alpha;
 };
 
-// A base colour texture: an image (shared by every texture that samples it) and how it wraps.
+// A texture: an image (shared by every texture that samples it), how it wraps, and the affine
+// map its texture coordinates go through first (glTF's KHR_texture_transform: offset · rotation
+// · scale; the identity elsewhere).
 struct Texture {
     std::shared_ptr<const TextureImage> image;
     Wrap wrap_s = Wrap::repeat, wrap_t = Wrap::repeat;
+    glm::mat3 uv_transform{1.0f};
 };
 
 inline constexpr std::uint32_t kNoTexture = ~std::uint32_t{0};
@@ -104,6 +107,10 @@ struct Material {
     // Emission (DESIGN §13): this colour × the emission texture's at the hit, added unshadowed.
     glm::vec3 emission{0.0f};
     std::uint32_t emission_texture = kNoTexture;
+    // A tangent-space normal map (glTF's normalTexture) on meshes with texture coordinates, its
+    // x and y scaled by `normal_scale` (docs/SCENES.md, "Normal maps").
+    std::uint32_t normal_texture = kNoTexture;
+    float normal_scale = 1.0f;
 };
 
 // Triangles as given (counter-clockwise front), object space.
@@ -114,6 +121,11 @@ struct TriangleMesh {
     std::vector<glm::vec3> normals;
     // One texture coordinate per vertex (u right, v down from the image's top row), or none.
     std::vector<glm::vec2> uvs;
+    // One colour per vertex (glTF's COLOR_0), multiplying the diffuse and ambient colours, or none.
+    std::vector<glm::vec3> colours;
+    // One tangent per vertex (glTF's TANGENT: xyz the direction of increasing u, w = ±1 the
+    // bitangent's sign), or none: normal maps then take each triangle's from its coordinates.
+    std::vector<glm::vec4> tangents;
 };
 
 struct SceneObject {
@@ -195,6 +207,11 @@ struct Scene {
 DMat4 translation_matrix(DVec3 offset);
 DMat4 scale_matrix(DVec3 factors);
 DMat4 rotation_matrix(DVec3 axis, double degrees); // right-handed about the normalised axis
+
+// DESIGN §13's orbit: frame k of a sequence of n is `camera` rotated by 360°·k/n about the world
+// +Y axis through its look-at point (a framed model's centre), keeping its distance, height and
+// up (`glint render --frames n --orbit`).
+Camera orbit_camera(const Camera& camera, int k, int n);
 
 // Largest condition number (after scaling the rows of M⁻¹'s linear part to unit length) that
 // glint accepts. Row scaling makes any rotated non-uniform scale perfectly conditioned, since

@@ -110,6 +110,16 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoin
         diffuse *= Vec3(texel->colour);
         ambient *= Vec3(texel->colour);
     }
+    // A mesh's vertex colours multiply the base colour too (glTF's COLOR_0).
+    if (const Mesh* mesh = world.objects()[hit.object].params.mesh;
+        mesh && !mesh->colours.empty()) {
+        const glm::uvec3 tri = mesh->triangles[hit.primitive];
+        const Real b1 = hit.u, b2 = hit.v, b0 = 1 - b1 - b2;
+        const Vec3 vertex = b0 * Vec3(mesh->colours[tri.x]) + b1 * Vec3(mesh->colours[tri.y]) +
+                            b2 * Vec3(mesh->colours[tri.z]);
+        diffuse *= vertex;
+        ambient *= vertex;
+    }
     tree.note((static_cast<std::uint64_t>(hit.object) + 1) * 2 + (odd ? 1 : 0));
     RayRecorder* const recorder = tree.recorder;
     const Real* const known_light =

@@ -35,6 +35,7 @@ Bilinear bilinear(const Texture& texture, glm::vec2 uv) {
         const double x = std::isfinite(c) ? double(c) * n : 0.0;
         return std::clamp(x, -1e9, 1e9);
     };
+    if (texture.uv_transform != glm::mat3(1.0f)) uv = glm::vec2(texture.uv_transform * glm::vec3(uv, 1.0f));
     Bilinear b;
     b.x = coordinate(uv.x, image.width), b.y = coordinate(uv.y, image.height);
     const double fx = std::floor(b.x - 0.5), fy = std::floor(b.y - 0.5);

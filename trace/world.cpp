@@ -43,7 +43,8 @@ SceneGeometry::SceneGeometry(const Scene& scene) : textures(scene.textures) {
         materials.push_back({Vec3(m.ambient), Vec3(m.diffuse), Vec3(m.specular), m.shininess,
                              m.reflectivity, m.transmission, m.ior, m.checker.size,
                              Vec3(m.checker.diffuse), Vec3(m.checker.ambient), texture(m.texture),
-                             cut_out, Vec3(m.emission), texture(m.emission_texture)});
+                             cut_out, Vec3(m.emission), texture(m.emission_texture),
+                             texture(m.normal_texture), m.normal_scale});
         transmissive |= m.transmission > 0;
     }
     const Stopwatch watch;
@@ -450,6 +451,56 @@ void World::intersect_one_packet(std::uint32_t index, std::span<const Ray> rays,
                       : Hit{};
 }
 
+namespace {
+
+// A normal map's normal at a mesh hit (glTF 2.0 §3.9.3): the texel (each channel 2c − 1, x and y
+// × the scale) in the tangent frame of the outward shading normal `n` (world), with the tangent
+// the mesh's (interpolated) or, without one, the triangle's direction of increasing u, and the
+// bitangent n × t × w, w = the tangent's sign (for a computed one, so that it points towards
+// decreasing v: up the image). Tangent and bitangent are made in object space (`object_normal`,
+// the shape's) and taken to the world as directions, so that a mirroring M keeps the frame's
+// handedness; the tangent is then made orthogonal to n. Where the frame degenerates (no u
+// direction on the triangle), n itself.
+Vec3 normal_mapped(const Mesh& mesh, const Phong& material, const Hit& hit, const Transform& m,
+                   Vec3 object_normal, Vec3 n) {
+    const glm::uvec3 tri = mesh.triangles[hit.primitive];
+    const Real b1 = hit.u, b2 = hit.v, b0 = 1 - b1 - b2;
+    Vec3 tangent;
+    Real sign;
+    if (!mesh.tangents.empty()) {
+        const glm::vec4 &t0 = mesh.tangents[tri.x], &t1 = mesh.tangents[tri.y],
+                        &t2 = mesh.tangents[tri.z];
+        tangent = b0 * Vec3(t0) + b1 * Vec3(t1) + b2 * Vec3(t2);
+        sign = t0.w < 0 ? -1 : 1;
+    } else {
+        const Vec3 dp1 = mesh.vertices[tri.y] - mesh.vertices[tri.x];
+        const Vec3 dp2 = mesh.vertices[tri.z] - mesh.vertices[tri.x];
+        const glm::vec2 duv1 = mesh.uvs[tri.y] - mesh.uvs[tri.x];
+        const glm::vec2 duv2 = mesh.uvs[tri.z] - mesh.uvs[tri.x];
+        const Real det = Real(duv1.x) * duv2.y - Real(duv2.x) * duv1.y;
+        if (det == 0) return n;
+        tangent = (dp1 * Real(duv2.y) - dp2 * Real(duv1.y)) / det;
+        const Vec3 towards_v = (dp2 * Real(duv1.x) - dp1 * Real(duv2.x)) / det;
+        sign = glm::dot(glm::cross(object_normal, tangent), towards_v) < 0 ? 1 : -1;
+    }
+    const Vec3 bitangent = glm::cross(object_normal, tangent) * sign;
+    Vec3 t = m.linear * tangent;
+    Vec3 b = m.linear * bitangent;
+    t -= n * glm::dot(n, t);
+    b -= n * glm::dot(n, b);
+    const Real tl = glm::length(t), bl = glm::length(b);
+    if (!(tl > 0) || !(bl > 0) || !std::isfinite(tl) || !std::isfinite(bl)) return n;
+    const glm::vec2 uv = mesh_uv(mesh, hit.primitive, hit.u, hit.v);
+    const Vec3 texel(sample_texture(*material.normal_texture, uv).colour);
+    const Vec3 c = 2.0_r * texel - 1.0_r;
+    const Vec3 mapped =
+        (t / tl) * (c.x * material.normal_scale) + (b / bl) * (c.y * material.normal_scale) + n * c.z;
+    const Real length = glm::length(mapped);
+    return length > 0 && std::isfinite(length) ? mapped / length : n;
+}
+
+} // namespace
+
 SurfacePoint World::surface(const Ray& ray, const Hit& hit) const {
     const Object& object = objects_[hit.object];
     const Transform& m = object.transform;
@@ -468,6 +519,13 @@ SurfacePoint World::surface(const Ray& ray, const Hit& hit) const {
         const Real length = glm::length(smooth);
         if (length > 0 && std::isfinite(length))
             shading = (from_inside ? -smooth : smooth) / length;
+    }
+    const Phong& material = geometry_->materials[object.material];
+    if (material.normal_texture && object.params.mesh && !object.params.mesh->uvs.empty()) {
+        const Vec3 outward = normal_mapped(*object.params.mesh, material, hit, m,
+                                           s.shading != Vec3(0.0_r) ? s.shading : s.normal,
+                                           from_inside ? -shading : shading);
+        shading = from_inside ? -outward : outward;
     }
     // A convex solid lies behind the tangent plane at every surface point, and a planar shape in
     // it: a ray leaving on the normal's side cannot meet the object again, so it skips the

@@ -39,6 +39,8 @@ struct Phong {
     std::optional<CutOut> cut_out;
     Vec3 emission;                   // added unshadowed at every hit (DESIGN §13)
     const Texture* emission_texture; // multiplies `emission` where given, or none
+    const Texture* normal_texture;   // a tangent-space normal map, or none
+    Real normal_scale;
 };
 
 struct Light {

@@ -35,6 +35,8 @@ struct Mesh {
     std::vector<glm::uvec3> triangles; // indices into vertices
     std::vector<Vec3> normals;         // per vertex, or empty (flat shading)
     std::vector<glm::vec2> uvs;        // texture coordinates per vertex, or empty
+    std::vector<glm::vec3> colours;    // colours per vertex, or empty
+    std::vector<glm::vec4> tangents;   // tangents per vertex (w: the bitangent's sign), or empty
     Bounds bounds;                     // of the vertices, object space
     // Over the triangles, object space; every leaf starts at a multiple of kTriangleLanes, so
     // that its triangles fill whole blocks (a leaf of up to four is one block).
@@ -190,6 +192,8 @@ inline Mesh prepare_mesh(const TriangleMesh& given) {
     }
     for (const glm::vec3& n : given.normals) mesh.normals.push_back(Vec3(n));
     mesh.uvs = given.uvs;
+    mesh.colours = given.colours;
+    mesh.tangents = given.tangents;
     if (mesh.triangles.size() > 8) mesh.bvh = WideBvh(triangle_bounds(mesh), kTriangleLanes);
     const bool tree = !mesh.bvh.nodes().empty();
     const std::size_t slots = tree ? mesh.bvh.items().size() : mesh.triangles.size();

@@ -1,0 +1,84 @@
+// glTF animations (glTF 2.0 §3.11) as glint plays them (DESIGN §13, "Animation time"): node
+// translation, rotation and scale channels, each sampler interpolated as the specification says
+// (STEP; LINEAR, rotations by its slerp; CUBICSPLINE, Hermite with the tangents scaled by the key
+// interval), holding its first value before the first key and its last after the last.
+// io/gltf_loader.cpp reads and checks them; GltfMotion then places a loaded scene at any time.
+#pragma once
+
+#include "trace/scene.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace glint {
+
+enum class Interpolation : std::uint8_t { step, linear, cubic_spline };
+enum class TrsPath : std::uint8_t { translation, rotation, scale };
+
+// One sampler as a channel reads it.
+struct KeyFrames {
+    std::vector<double> times; // strictly increasing, finite
+    // `width` numbers a key (3, or 4 for rotations: x, y, z, w); CUBICSPLINE keeps three
+    // elements a key, in-tangent, value, out-tangent.
+    std::vector<double> values;
+    int width = 3;
+    Interpolation interpolation = Interpolation::linear;
+};
+
+// The keys' value at time t (unused components 0); a rotation comes back a unit quaternion.
+glm::dvec4 sample_keys(const KeyFrames& keys, double t, bool rotation);
+
+// A node's local transform as glTF composes it: T · R · S.
+struct NodeTrs {
+    DVec3 translation{0.0};
+    glm::dvec4 rotation{0, 0, 0, 1}; // x, y, z, w
+    DVec3 scale{1.0};
+};
+DMat4 trs_matrix(const NodeTrs& trs);
+
+// What the loader records of a model's node tree and the chosen animation, so that poses at other
+// times need no second reading of the file.
+class GltfMotion final : public Animation {
+  public:
+    struct Channel {
+        std::size_t node;
+        TrsPath path;
+        std::size_t keys; // index in `samplers`
+    };
+    struct Node {
+        DMat4 matrix{1.0}; // its `matrix`, for a node no channel moves
+        NodeTrs trs;       // its own TRS
+        bool has_matrix = false;
+        std::vector<std::size_t> children;
+    };
+
+    std::string label;
+    std::vector<Node> nodes;
+    std::vector<std::size_t> roots;
+    std::vector<KeyFrames> samplers;
+    std::vector<Channel> channels;
+    // What the scene's parts hang on: per object and per light, its node; the file camera's
+    // node, when the scene looks through one.
+    std::vector<std::size_t> object_nodes, light_nodes;
+    std::optional<std::size_t> camera_node;
+
+    // Node k's local matrix at time t.
+    DMat4 local(std::size_t k, double t) const;
+    // Whether a channel moves node k.
+    bool moves(std::size_t k) const;
+    // Every node's world matrix at time t.
+    std::vector<DMat4> world(double t) const;
+
+    std::string name() const override { return label; }
+    double duration() const override;
+    void pose(Scene& scene, double t) const override;
+};
+
+// A file camera's eye, look-at point and up from its node's world matrix (DESIGN §12: the
+// node's −Z is the viewing direction, its +Y up).
+void place_camera(Camera& camera, const DMat4& world);
+
+} // namespace glint
