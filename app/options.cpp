@@ -23,6 +23,13 @@ void SceneOptions::add_to(CLI::App& cmd) {
                                    "glTF: look through the file's camera N (default: its first)")
                         ->check(CLI::NonNegativeNumber);
     cmd.add_option("--size", size, "Image size WIDTHxHEIGHT, overriding the scene's camera");
+    time_option = cmd.add_option("--time", time,
+                                 "glTF: place the model's nodes at T seconds of its animation "
+                                 "(a sequence's first frame; default: the nodes as the file "
+                                 "places them)");
+    animation_option =
+        cmd.add_option("--animation", animation,
+                       "glTF: which of the file's animations --time and --frames play (default 0)");
     render.add_to(cmd);
 }
 
@@ -93,6 +100,13 @@ Scene SceneOptions::load() const {
     ModelOptions model;
     if (camera_option->count()) model.camera = camera;
     if (!size.empty()) model.size = parse_size(size, "--size");
+    if (time_option->count() && !(time >= 0 && time <= 1e9))
+        throw UsageError("--time " + time_option->as<std::string>() +
+                         ": must be 0 or more seconds (at most 1e9)");
+    if (animation_option->count() && animation < 0)
+        throw UsageError("--animation " + std::to_string(animation) + ": must be 0 or more");
+    if (time_option->count() || animation_option->count() || animate) model.time = time;
+    model.animation = animation;
     Scene loaded = load_scene_with_notes(scene_path(), model);
     render.apply(loaded);
     return loaded;

@@ -49,6 +49,13 @@ struct SceneOptions {
     std::string size;
     int camera = 0;
     CLI::Option* camera_option = nullptr;
+    double time = 0;     // `--time T`: a glTF model's animation at T seconds (DESIGN §13)
+    int animation = 0;   // `--animation K`: which of its animations
+    CLI::Option* time_option = nullptr;
+    CLI::Option* animation_option = nullptr;
+    // Set by a sequence (`glint render --frames`): the scene's animation is read even without
+    // --time, to be played from T (default 0).
+    bool animate = false;
     RenderOptions render;
 
     void add_to(CLI::App& cmd);

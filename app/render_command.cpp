@@ -7,6 +7,7 @@
 #include "frame/record_json.h"
 
 #include "io/exr.h"
+#include "io/scene_check.h"
 #include "io/extension.h"
 #include "io/png.h"
 #include "io/write_file.h"
@@ -20,7 +21,10 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <cctype>
+#include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <memory>
 #include <optional>
 
@@ -36,7 +40,61 @@ struct RenderArgs {
     std::string stats;
     std::string aa_map;
     std::vector<std::string> aovs;
+    // A sequence (DESIGN §13): `--frames N` at `--fps F`, from --time (default 0), optionally
+    // orbiting the camera; written to a pattern with a number field (`-o out/x-%04d.png`).
+    int frames = 1;
+    double fps = 24;
+    bool orbit = false;
+    CLI::Option* frames_option = nullptr;
+    CLI::Option* fps_option = nullptr;
+    bool sequence() const { return frames_option->count() > 0 || orbit; }
 };
+
+// An output pattern's number field: printf's %d, %Nd or %0Nd (N at most 9), the one '%' the
+// name may hold besides "%%"; nothing where it has none.
+struct NumberField {
+    std::size_t at = 0, length = 0;
+    std::string format; // "%04d"
+};
+
+std::optional<NumberField> number_field(const std::string& pattern) {
+    std::optional<NumberField> found;
+    for (std::size_t i = 0; i < pattern.size(); ++i) {
+        if (pattern[i] != '%') continue;
+        if (i + 1 < pattern.size() && pattern[i + 1] == '%') {
+            ++i;
+            continue;
+        }
+        std::size_t j = i + 1;
+        while (j < pattern.size() && j - i <= 2 && std::isdigit(static_cast<unsigned char>(pattern[j])))
+            ++j;
+        if (j >= pattern.size() || pattern[j] != 'd' || found)
+            throw UsageError("-o " + pattern + ": a sequence's name holds one number field, %d, "
+                             "%4d or %04d (write %% for a percent sign)");
+        found = NumberField{i, j + 1 - i, pattern.substr(i, j + 1 - i)};
+        i = j;
+    }
+    return found;
+}
+
+// Frame k's file name: the pattern with its number field filled and "%%" made '%'.
+fs::path frame_path(const std::string& pattern, int k) {
+    const std::optional<NumberField> field = number_field(pattern);
+    std::string name;
+    for (std::size_t i = 0; i < pattern.size(); ++i) {
+        if (field && i == field->at) {
+            char number[32];
+            std::snprintf(number, sizeof number, field->format.c_str(), k);
+            name += number;
+            i += field->length - 1;
+        } else {
+            name += pattern[i];
+            if (pattern[i] == '%' && i + 1 < pattern.size() && pattern[i + 1] == '%') ++i;
+        }
+    }
+    return name;
+}
+
 
 // What a render needs once its input has been checked.
 struct RenderJob {
@@ -50,7 +108,28 @@ struct RenderJob {
 // writes, so only rank 0 checks where it writes; every rank reads the scene.
 RenderJob prepare(const RenderArgs& args) {
     RenderJob job{args.scene.scene_path(), args.output, {}, {}};
-    if (job.output.empty()) job.output = fs::path("out") / job.scene_path.stem().concat(".png");
+    if (job.output.empty())
+        job.output = fs::path("out") /
+                     job.scene_path.stem().concat(args.sequence() && args.frames > 1 ? "-%04d.png"
+                                                                                      : ".png");
+    if (args.sequence()) {
+        if (args.frames < 1)
+            throw UsageError("--frames " + std::to_string(args.frames) + ": must be 1 or more");
+        if (!(args.fps > 0 && args.fps <= 1e6))
+            throw UsageError("--fps " + args.fps_option->as<std::string>() +
+                             ": must be above 0 (frames a second, at most 1e6)");
+        if (on_ranks())
+            throw UsageError("--frames: a sequence renders on one machine (each frame on every "
+                             "core); run it without mpirun");
+        if (!args.stats.empty() || !args.aa_map.empty())
+            throw UsageError(std::string(args.stats.empty() ? "--aa-map" : "--stats") +
+                             " describes one frame: not with --frames or --orbit");
+        if (!number_field(job.output.string()) && args.frames > 1)
+            throw UsageError("-o " + job.output.string() + ": --frames " +
+                             std::to_string(args.frames) +
+                             " needs a number field in the name, as out/frame-%04d.png");
+        job.output = frame_path(job.output.string(), 0);
+    }
     const std::string format = extension_of(job.output); // x.PNG is a PNG, as scenes' names go
     if (format != ".png" && format != ".exr")
         throw UsageError("-o " + job.output.string() +
@@ -73,7 +152,9 @@ RenderJob prepare(const RenderArgs& args) {
         if (!args.stats.empty()) check_output(args.stats, "--stats");
         if (!args.aa_map.empty()) check_output(args.aa_map, "--aa-map");
     }
-    job.scene = args.scene.load();
+    SceneOptions scene = args.scene;
+    scene.animate = args.sequence();
+    job.scene = scene.load();
     if (!args.aa_map.empty() &&
         (job.scene.render.samples == 1 || job.scene.render.antialias != Antialias::adaptive))
         throw UsageError("--aa-map " + args.aa_map +
@@ -251,7 +332,63 @@ void combine_ranks(Frame& frame, const RankFigures& mine, int threads) {
     }
 }
 
+// A sequence: the scene loaded, its meshes, BVHs and textures prepared, and the GL context and
+// shaders made once; per frame, the animation's pose and the orbit's camera, a World over the
+// shared geometry (its top-level structure built anew), the item buffer uploaded and drawn,
+// the frame traced and written.
+int run_sequence(const RenderArgs& args) {
+    const Stopwatch total;
+    RenderJob job = prepare(args);
+    const std::string pattern =
+        args.output.empty() ? (fs::path("out") / job.scene_path.stem()).string() +
+                                  (args.frames > 1 ? "-%04d.png" : ".png")
+                            : args.output;
+    Scene& scene = job.scene;
+    const Camera unorbited = scene.camera;
+    FrameSettings settings = args.frame.settings();
+    std::optional<GlPass> gl;
+    if (needs_gl(settings, scene.objects.size())) gl.emplace(settings);
+    const Stopwatch prepare_watch;
+    const auto geometry = std::make_shared<const SceneGeometry>(scene);
+    const double prepare_seconds = prepare_watch.seconds();
+    const std::string moving =
+        scene.animation ? scene.animation->name() + ", " +
+                              std::to_string(scene.animation->duration()).substr(0, 5) + " s"
+                        : "no animation";
+    std::printf("glint: %d frame%s of %s at %g fps from t = %g s (%s%s); meshes and BVHs "
+                "prepared once in %.3f s\n",
+                args.frames, args.frames == 1 ? "" : "s", job.scene_path.c_str(), args.fps,
+                args.scene.time, moving.c_str(), args.orbit ? ", orbiting" : "", prepare_seconds);
+    std::fflush(stdout);
+    double traced = 0;
+    for (int k = 0; k < args.frames; ++k) {
+        const Stopwatch frame_watch;
+        const double t = args.scene.time + k / args.fps;
+        if (scene.animation && k > 0) {
+            scene.animation->pose(scene, t);
+            // A pose may scale a node to nothing: held to the scene's rules, frame by frame.
+            check_scene(scene, [&](const std::string& path) {
+                return job.scene_path.string() + " at t = " + std::to_string(t) + " s: /" + path;
+            });
+        }
+        if (args.orbit) scene.camera = orbit_camera(unorbited, k, args.frames);
+        const World world(scene, geometry, args.scene.accel_kind());
+        const Frame frame = render_frame(world, settings, nullptr, gl ? &*gl : nullptr);
+        traced += frame.times.total();
+        job.output = frame_path(pattern, k);
+        write_image(job, frame.result);
+        std::printf("frame %d/%d (t = %.4g s): wrote %s in %.3f s\n", k + 1, args.frames, t,
+                    job.output.c_str(), frame_watch.seconds());
+        std::fflush(stdout);
+    }
+    std::printf("glint: wrote %d frame%s (%dx%d, %s) in %.3f s (render %.3f s)\n", args.frames,
+                args.frames == 1 ? "" : "s", scene.camera.width, scene.camera.height,
+                args.frame.describe().c_str(), total.seconds(), traced);
+    return 0;
+}
+
 int run_render(const RenderArgs& args) {
+    if (args.sequence()) return run_sequence(args);
     const Stopwatch total;
     Stopwatch phase;
     RenderJob job;
@@ -327,6 +464,15 @@ Command add_render_command(CLI::App& app) {
                     "depth (Z), normal (N.X, N.Y, N.Z), id, cutoff")
         ->delimiter(',');
     args->frame.add_to(*cmd, true);
+    args->frames_option =
+        cmd->add_option("--frames", args->frames,
+                        "Render a sequence of N frames at t = T + k/F (a glTF model's animation, "
+                        "--orbit's turntable); -o then needs a number field, as out/x-%04d.png");
+    args->fps_option =
+        cmd->add_option("--fps", args->fps, "A sequence's frames a second")->capture_default_str();
+    cmd->add_flag("--orbit", args->orbit,
+                  "With --frames N: turn the camera 360° about the +Y axis through its look-at "
+                  "point (a framed model's centre) over the N frames");
     cmd->add_option("--stats", args->stats,
                     "Also write timings per phase and ray counts as JSON here");
     cmd->add_option("--aa-map", args->aa_map,

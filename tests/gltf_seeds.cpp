@@ -1,7 +1,9 @@
 // Writes the glTF fuzzer's seeds (fuzz/gltf_fuzzer.cpp) into the directory given: small models
 // made by tests/gltf_builder.h, as .gltf text and as .glb, covering what the loader reads (TRS
-// and matrix nodes, instanced meshes, a camera, a light, a texture with a sampler, a strip).
+// and matrix nodes, instanced meshes, a camera, a light, a texture with a sampler, a strip, a
+// cut-out and an emissive material, an animation with each interpolation).
 #include "gltf_builder.h"
+#include "rgba_png.h"
 
 #include "io/png.h"
 #include "trace/image.h"
@@ -45,5 +47,37 @@ int main(int argc, char** argv) {
     strip.node({{"mesh", strip.mesh({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0}, {0, 1, 2, 3})}});
     strip.doc["meshes"][0]["primitives"][0]["mode"] = 5;
     std::ofstream(dir / "strip.gltf", std::ios::binary) << strip.gltf();
+    // A cut-out and an emissive material, and an animation with each interpolation.
+    GltfBuilder moving;
+    const int leaf = moving.texture(glint::testing::rgba_png(2, 1, {255, 255, 255, 0, 255, 255, 255, 255}));
+    moving.doc["materials"].push_back(
+        {{"alphaMode", "MASK"}, {"alphaCutoff", 0.4},
+         {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", leaf}}}}}});
+    moving.doc["materials"].push_back(
+        {{"emissiveFactor", {1, 0.5, 0}}, {"emissiveTexture", {{"index", leaf}}},
+         {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 3}}}}}});
+    const int card = moving.mesh({-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0}, {0, 1, 2, 0, 2, 3}, 0,
+                                 {0, 1, 1, 1, 1, 0, 0, 0});
+    const int lamp = moving.mesh({0, 0, -1, 1, 0, -1, 0, 1, -1}, {0, 1, 2}, 1, {0, 0, 1, 0, 0, 1});
+    moving.node({{"mesh", card}});
+    moving.node({{"mesh", lamp}, {"rotation", {0, 0, 0, 1}}});
+    const int times = moving.floats({0, 0.5, 1}, "SCALAR", 1);
+    moving.doc["animations"] = {
+        {{"samplers",
+          {{{"input", times}, {"output", moving.floats({0, 0, 0, 1, 0, 0, 1, 1, 0}, "VEC3", 3)}},
+           {{"input", times},
+            {"output", moving.floats({0, 0, 0, 1, 0, 0.6f, 0, 0.8f, 0, 1, 0, 0}, "VEC4", 4)},
+            {"interpolation", "STEP"}},
+           {{"input", times},
+            {"output", moving.floats({0, 0, 0, 1, 1, 1, 0, 0, 0, 0, 0, 0, 2, 2, 2, 0, 0, 0, 0, 0, 0,
+                                      1, 1, 1, 0, 0, 0},
+                                     "VEC3", 3)},
+            {"interpolation", "CUBICSPLINE"}}}},
+         {"channels",
+          {{{"sampler", 0}, {"target", {{"node", 0}, {"path", "translation"}}}},
+           {{"sampler", 1}, {"target", {{"node", 1}, {"path", "rotation"}}}},
+           {{"sampler", 2}, {"target", {{"node", 0}, {"path", "scale"}}}}}}}};
+    std::ofstream(dir / "moving.gltf", std::ios::binary) << moving.gltf();
+    std::ofstream(dir / "moving.glb", std::ios::binary) << moving.glb();
     return 0;
 }
