@@ -107,6 +107,7 @@ Scene SceneOptions::load() const {
         throw UsageError("--animation " + std::to_string(animation) + ": must be 0 or more");
     if (time_option->count() || animation_option->count() || animate) model.time = time;
     model.animation = animation;
+    model.srgb = srgb;
     Scene loaded = load_scene_with_notes(scene_path(), model);
     render.apply(loaded);
     return loaded;

@@ -56,6 +56,7 @@ struct SceneOptions {
     // Set by a sequence (`glint render --frames`): the scene's animation is read even without
     // --time, to be played from T (default 0).
     bool animate = false;
+    bool srgb = false; // `glint render --colour srgb`: ModelOptions::srgb
     RenderOptions render;
 
     void add_to(CLI::App& cmd);

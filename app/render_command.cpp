@@ -42,6 +42,7 @@ struct RenderArgs {
     std::vector<std::string> aovs;
     // A sequence (DESIGN §13): `--frames N` at `--fps F`, from --time (default 0), optionally
     // orbiting the camera; written to a pattern with a number field (`-o out/x-%04d.png`).
+    std::string colour = "linear"; // --colour: linear (DESIGN §11's bytes) or srgb
     int frames = 1;
     double fps = 24;
     bool orbit = false;
@@ -102,12 +103,13 @@ struct RenderJob {
     fs::path output;
     Scene scene;
     std::vector<Aov> aovs; // EXR only
+    bool srgb = false;     // --colour srgb
 };
 
 // Every check on the input, before anything is rendered or written. On MPI ranks only rank 0
 // writes, so only rank 0 checks where it writes; every rank reads the scene.
 RenderJob prepare(const RenderArgs& args) {
-    RenderJob job{args.scene.scene_path(), args.output, {}, {}};
+    RenderJob job{args.scene.scene_path(), args.output, {}, {}, args.colour == "srgb"};
     if (job.output.empty())
         job.output = fs::path("out") /
                      job.scene_path.stem().concat(args.sequence() && args.frames > 1 ? "-%04d.png"
@@ -154,6 +156,7 @@ RenderJob prepare(const RenderArgs& args) {
     }
     SceneOptions scene = args.scene;
     scene.animate = args.sequence();
+    scene.srgb = args.colour == "srgb";
     job.scene = scene.load();
     if (!args.aa_map.empty() &&
         (job.scene.render.samples == 1 || job.scene.render.antialias != Antialias::adaptive))
@@ -299,9 +302,12 @@ bool wants(const std::vector<Aov>& aovs, Aov aov) {
     return std::find(aovs.begin(), aovs.end(), aov) != aovs.end();
 }
 
-// The frame as the output's format: the PNG's bytes, or the EXR's float image with its AOVs.
+// The frame as the output's format: the PNG's bytes (through the sRGB curve with --colour srgb),
+// or the EXR's float image with its AOVs (linear either way).
 void write_image(const RenderJob& job, const RenderResult& result) {
-    if (extension_of(job.output) == ".png") return write_png(job.output, result.bytes());
+    if (extension_of(job.output) == ".png")
+        return write_png(job.output,
+                         job.srgb ? to_srgb_bytes(result.display()) : result.bytes());
     const std::vector<float> cutoff =
         wants(job.aovs, Aov::cutoff) ? cutoff_radiance(job.scene, result) : std::vector<float>();
     ExrLayers layers{&result.radiance};
@@ -473,6 +479,13 @@ Command add_render_command(CLI::App& app) {
     cmd->add_flag("--orbit", args->orbit,
                   "With --frames N: turn the camera 360° about the +Y axis through its look-at "
                   "point (a framed model's centre) over the N frames");
+    cmd->add_option("--colour", args->colour,
+                    "linear: texture bytes are colours and the PNG holds round(255·c) (the "
+                    "default, DESIGN §11); srgb: a glTF's base colour and emissive textures are "
+                    "decoded from sRGB, shading is linear, and the PNG is sRGB-encoded (EXR stays "
+                    "linear)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"linear", "srgb"}));
     cmd->add_option("--stats", args->stats,
                     "Also write timings per phase and ray counts as JSON here");
     cmd->add_option("--aa-map", args->aa_map,

@@ -419,7 +419,7 @@ class Reader {
         out.transmission = static_cast<float>(transmission);
         out.ior = static_cast<float>(ior);
         if (pbr.baseColorTexture.index >= 0)
-            out.texture = texture(pbr.baseColorTexture, pbr_at + "/baseColorTexture");
+            out.texture = texture(pbr.baseColorTexture, pbr_at + "/baseColorTexture", true);
         if (pbr.metallicRoughnessTexture.index >= 0) unused("metallicRoughnessTexture", at);
         if (g.normalTexture.index >= 0) {
             out.normal_texture = texture(g.normalTexture, at + "/normalTexture");
@@ -459,7 +459,7 @@ class Reader {
             out.emission[c] = static_cast<float>(v * strength);
         }
         if (g.emissiveTexture.index >= 0 && out.emission != glm::vec3(0.0f))
-            out.emission_texture = texture(g.emissiveTexture, at + "/emissiveTexture");
+            out.emission_texture = texture(g.emissiveTexture, at + "/emissiveTexture", true);
     }
 
     // The base colour's alpha (docs/SCENES.md, "Cut-outs and blending"): MASK cuts out where it
@@ -529,8 +529,10 @@ class Reader {
     }
 
     // The texture `info` names (at `at`), or kNoTexture (with a warning) where it cannot be used;
-    // its image decoded once however many textures sample it.
-    template <class Info> std::uint32_t texture(const Info& info, const std::string& at) {
+    // its image decoded once however many textures sample it. `colour`: its texels are colours
+    // (sRGB-encoded, as glTF says: decoded under --colour srgb), not data such as normals.
+    template <class Info>
+    std::uint32_t texture(const Info& info, const std::string& at, bool colour = false) {
         if (static_cast<std::size_t>(info.index) >= m_.textures.size())
             fail(at + "/index", "no texture " + std::to_string(info.index));
         int tex_coord = info.texCoord;
@@ -558,6 +560,7 @@ class Reader {
         }
         out.image = image(t.source);
         out.uv_transform = transform;
+        out.srgb = colour && options_.srgb;
         if (!out.image) return kNoTexture;
         scene_.textures.push_back(out);
         return static_cast<std::uint32_t>(scene_.textures.size() - 1);

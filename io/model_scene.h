@@ -20,6 +20,9 @@ struct ModelOptions {
     // nodes' own TRS, and no animation is read.
     std::optional<double> time;
     int animation = 0;
+    // `glint render --colour srgb`: a glTF's base colour and emissive textures are decoded from
+    // sRGB to linear (their factors are linear already).
+    bool srgb = false;
 };
 
 // The framing rule's fixed viewing direction: from the front (+Z, the side glTF's and most OBJ

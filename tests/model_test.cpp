@@ -187,6 +187,42 @@ TEST(Model, AGltfMaskBlendAndEmissionAreReadAsTheDesignSays) {
     EXPECT_GT(white, 20);
 }
 
+// --colour srgb: the glTF's base colour texture is decoded from sRGB (its bytes 188 are 0.5
+// linear), the PNG is encoded again, and the EXR stays linear; the default is unchanged.
+TEST(Model, ColourSrgbDecodesTexturesAndEncodesThePng) {
+    const fs::path dir = fresh_dir();
+    GltfBuilder b;
+    Image grey(1, 1);
+    std::fill(grey.rgb.begin(), grey.rgb.end(), std::uint8_t{188});
+    const int texture = b.texture(encode_png(grey));
+    b.doc["materials"].push_back(
+        {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", texture}}}, {"metallicFactor", 0}}}});
+    const std::vector<float> uv = {0, 1, 1, 1, 1, 0, 0, 0};
+    b.node({{"mesh", b.mesh({-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0}, {0, 1, 2, 0, 2, 3}, 0, uv)}});
+    write(dir / "grey.glb", b.glb());
+    ModelOptions srgb;
+    srgb.srgb = true;
+    EXPECT_TRUE(parse_gltf(b.glb(), "grey.glb", {}, srgb).textures.at(0).srgb);
+    EXPECT_FALSE(parse_gltf(b.glb(), "grey.glb", {}).textures.at(0).srgb);
+    for (const char* args : {"--colour linear -o linear.png", "--colour srgb -o srgb.png",
+                             "-o default.png", "--colour srgb -o srgb.exr",
+                             "--colour linear -o linear.exr"}) {
+        const Outcome r = glint(dir, std::string("render grey.glb --size 32x24 --mode ray ") + args);
+        ASSERT_EQ(r.exit_code, 0) << args << r.err;
+    }
+    EXPECT_EQ(read_png(dir / "linear.png").rgb, read_png(dir / "default.png").rgb);
+    const Image linear = read_png(dir / "linear.png"), encoded = read_png(dir / "srgb.png");
+    EXPECT_NE(linear.rgb, encoded.rgb);
+    const std::uint8_t* centre = encoded.pixel(16, 12);
+    const std::uint8_t* plain = linear.pixel(16, 12);
+    // The quad's lit grey: decoded to a darker linear value, then encoded brighter again.
+    EXPECT_GT(centre[0], 0);
+    EXPECT_NE(centre[0], plain[0]);
+    const Outcome bad = glint(dir, "render grey.glb --colour rec709 -o x.png");
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
 // What a glTF only decorates itself with (a texture file that is missing, features glint does
 // not draw) is a warning; the model renders.
 TEST(Model, AMissingTextureAndUnusedFeaturesAreWarnings) {

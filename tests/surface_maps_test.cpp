@@ -134,5 +134,24 @@ TEST(SurfaceMaps, TheGltfLoaderReadsThem) {
     EXPECT_NEAR(uv.y, 0.25 - 2, 1e-6);
 }
 
+// --colour srgb's two curves: the encoding of 0, 1 and a mid grey (0.5 linear is byte 188), and
+// decoding a byte then encoding it again returns it; a colour texture marked sRGB is decoded
+// before filtering.
+TEST(SurfaceMaps, TheSrgbCurvesAreInversesAndTexturesDecodeBeforeFiltering) {
+    EXPECT_EQ(to_srgb_byte(0.0f), 0);
+    EXPECT_EQ(to_srgb_byte(1.0f), 255);
+    EXPECT_EQ(to_srgb_byte(0.5f), 188);
+    EXPECT_EQ(to_srgb_byte(std::nanf("")), 0);
+    for (int b = 0; b < 256; ++b) EXPECT_EQ(to_srgb_byte(srgb_to_linear(std::uint8_t(b))), b) << b;
+    auto image = std::make_shared<TextureImage>();
+    image->width = 2, image->height = 1;
+    image->rgb = {0, 0, 0, 188, 188, 188};
+    Texture t{image, Wrap::clamp, Wrap::clamp};
+    t.srgb = true;
+    EXPECT_NEAR(sample_texture(t, {0.75f, 0.5f}).colour.x, 0.5f, 3e-3);
+    // Halfway between the texels: the mean of the decoded values, not the decoded mean.
+    EXPECT_NEAR(sample_texture(t, {0.5f, 0.5f}).colour.x, 0.5f * srgb_to_linear(188), 1e-6);
+}
+
 } // namespace
 } // namespace glint

@@ -4,7 +4,9 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <new>
@@ -29,6 +31,34 @@ void* allocate_frame_storage(std::size_t bytes) {
 void free_frame_storage(void* block, std::size_t bytes) {
     if (bytes < kHugeStorage) return ::operator delete(block);
     std::free(block);
+}
+
+std::uint8_t to_srgb_byte(float c) {
+    const double x = c > 0.0f ? (c < 1.0f ? c : 1.0) : 0.0;
+    const double v = x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1 / 2.4) - 0.055;
+    return static_cast<std::uint8_t>(static_cast<int>(255.0 * v + 0.5));
+}
+
+Image to_srgb_bytes(const FloatImage& colour) {
+    Image image = Image::uninitialised(colour.width, colour.height);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, colour.rgb.size(), 1 << 16),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t i = r.begin(); i != r.end(); ++i)
+                              image.rgb[i] = to_srgb_byte(colour.rgb[i]);
+                      });
+    return image;
+}
+
+float srgb_to_linear(std::uint8_t byte) {
+    static const auto table = [] {
+        std::array<float, 256> t{};
+        for (int i = 0; i < 256; ++i) {
+            const double v = i / 255.0;
+            t[i] = static_cast<float>(v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4));
+        }
+        return t;
+    }();
+    return table[byte];
 }
 
 Image to_bytes(const FloatImage& colour) {

@@ -111,4 +111,13 @@ inline std::uint8_t to_byte(float c) {
 // Each channel of `colour` through to_byte: the PNG's rule (DESIGN §2, §11).
 Image to_bytes(const FloatImage& colour);
 
+// `glint render --colour srgb`: each channel clamped to [0, 1] (NaN to 0), through the sRGB
+// encoding curve (IEC 61966-2-1: 12.92·c up to 0.0031308, else 1.055·c^(1/2.4) − 0.055), then
+// round(255·v) as to_byte does.
+std::uint8_t to_srgb_byte(float c);
+Image to_srgb_bytes(const FloatImage& colour);
+
+// The sRGB decoding curve of a byte, as a linear value in [0, 1] (the inverse of the above).
+float srgb_to_linear(std::uint8_t byte);
+
 } // namespace glint

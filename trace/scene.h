@@ -83,6 +83,9 @@ struct Texture {
     std::shared_ptr<const TextureImage> image;
     Wrap wrap_s = Wrap::repeat, wrap_t = Wrap::repeat;
     glm::mat3 uv_transform{1.0f};
+    // Its bytes are sRGB-encoded colours to decode to linear before filtering (a glTF base
+    // colour or emissive texture under `glint render --colour srgb`); else byte / 255.
+    bool srgb = false;
 };
 
 inline constexpr std::uint32_t kNoTexture = ~std::uint32_t{0};

@@ -1,5 +1,7 @@
 #include "trace/texture.h"
 
+#include "trace/image.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -56,6 +58,7 @@ TexelSample sample_texture(const Texture& texture, glm::vec2 uv) {
     s.texel = {static_cast<float>(b.x), static_cast<float>(b.y)};
     const auto texel = [&](int tx, int ty) {
         const std::uint8_t* p = &image.rgb[(static_cast<std::size_t>(ty) * image.width + tx) * 3];
+        if (texture.srgb) return glm::vec3(srgb_to_linear(p[0]), srgb_to_linear(p[1]), srgb_to_linear(p[2]));
         return glm::vec3(p[0], p[1], p[2]) * (1.0f / 255.0f);
     };
     s.colour = (1 - b.wy) * ((1 - b.wx) * texel(b.x0, b.y0) + b.wx * texel(b.x1, b.y0)) +
