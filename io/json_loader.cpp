@@ -488,10 +488,7 @@ class Loader {
         for (ObjPart& part : model.parts) {
             std::uint32_t material = 0;
             if (part.material) {
-                if (part.texture) {
-                    part.material->texture = static_cast<std::uint32_t>(scene.textures.size());
-                    scene.textures.push_back(*part.texture);
-                }
+                add_part_textures(part, scene.textures);
                 material = static_cast<std::uint32_t>(scene.materials.size());
                 scene.materials.push_back(*part.material);
                 scene.material_names.push_back(given + ":" + part.material_name);

@@ -68,10 +68,7 @@ Scene obj_scene(const std::filesystem::path& path, const ModelOptions& options) 
         SceneObject o;
         o.shape = ShapeKind::mesh;
         if (part.material) {
-            if (part.texture) {
-                part.material->texture = static_cast<std::uint32_t>(scene.textures.size());
-                scene.textures.push_back(*part.texture);
-            }
+            add_part_textures(part, scene.textures);
             o.material = static_cast<std::uint32_t>(scene.materials.size());
             scene.materials.push_back(*part.material);
             scene.material_names.push_back(part.material_name);

@@ -229,7 +229,8 @@ class MtlChecker : public LineChecker {
         if (number) numbers(w, line, 1, 1, false);
         static constexpr std::array<std::string_view, 7> kRead = {"Ka", "Kd",    "Ks", "Ns",
                                                                   "Ni", "d",     "Tr"};
-        if (k != "map_Kd" && k != "illum" && !in(k, kRead)) unused.emplace(k, line);
+        if (k != "map_Kd" && k != "map_d" && k != "illum" && !in(k, kRead))
+            unused.emplace(k, line);
     }
 
     bool named_ = false;
@@ -409,10 +410,30 @@ ObjModel parse_obj(const std::string& text, const std::string& name,
                 model.warnings.push_back(name + ": material '" + printable(m.name) +
                                          "': map_Kd not used: its faces have no texture "
                                          "coordinates (vt) at every corner");
+            b.part.alpha_file = m.alpha_texname;
+            if (m.alpha_texopt.clamp) b.part.alpha_wrap = Wrap::clamp;
+            if (!m.alpha_texname.empty() && b.part.mesh.uvs.empty())
+                model.warnings.push_back(name + ": material '" + printable(m.name) +
+                                         "': map_d not used: its faces have no texture "
+                                         "coordinates (vt) at every corner");
         }
         model.parts.push_back(std::move(b.part));
     }
     return model;
+}
+
+void add_part_textures(ObjPart& part, std::vector<Texture>& textures) {
+    Material& material = *part.material;
+    if (part.texture) {
+        material.texture = static_cast<std::uint32_t>(textures.size());
+        textures.push_back(*part.texture);
+    }
+    if (part.alpha) {
+        material.alpha_texture = static_cast<std::uint32_t>(textures.size());
+        textures.push_back(*part.alpha);
+        material.cut_out = true;
+        material.alpha_cutoff = kObjAlphaCutoff;
+    }
 }
 
 ObjModel load_obj(const std::filesystem::path& path) {
@@ -445,6 +466,27 @@ ObjModel load_obj(const std::filesystem::path& path) {
                                           model.warnings))
                 it->second = std::make_shared<const TextureImage>(std::move(*image));
         if (it->second) part.texture = Texture{it->second, part.texture_wrap, part.texture_wrap};
+    }
+    // map_d: the image's alpha channel, or where it has none its grey level (the mean of its
+    // channels), becomes the alpha a cut-out reads.
+    std::map<std::string, std::shared_ptr<const TextureImage>> alphas;
+    for (ObjPart& part : model.parts) {
+        if (part.alpha_file.empty() || part.mesh.uvs.empty()) continue;
+        auto [it, added] = alphas.emplace(part.alpha_file, nullptr);
+        if (added)
+            if (auto image = load_texture(texture_path(dir, part.alpha_file),
+                                          path.string() + ": material '" +
+                                              printable(part.material_name) + "' map_d",
+                                          model.warnings)) {
+                if (image->alpha.empty()) {
+                    image->alpha.resize(image->rgb.size() / 3);
+                    for (std::size_t i = 0; i < image->alpha.size(); ++i)
+                        image->alpha[i] = static_cast<std::uint8_t>(
+                            (image->rgb[3 * i] + image->rgb[3 * i + 1] + image->rgb[3 * i + 2] + 1) / 3);
+                }
+                it->second = std::make_shared<const TextureImage>(std::move(*image));
+            }
+        if (it->second) part.alpha = Texture{it->second, part.alpha_wrap, part.alpha_wrap};
     }
     return model;
 }

@@ -20,7 +20,18 @@ struct ObjPart {
     std::string texture_file; // the MTL material's map_Kd as named, or empty
     Wrap texture_wrap = Wrap::repeat; // map_Kd's -clamp on: clamp
     std::optional<Texture> texture;   // map_Kd decoded (load_obj), where it could be
+    // The MTL material's map_d (docs/SCENES.md, "OBJ cut-outs"): a cut-out at alpha 0.5.
+    std::string alpha_file;
+    Wrap alpha_wrap = Wrap::repeat;
+    std::optional<Texture> alpha; // map_d decoded, its alpha (or grey level) as the image's alpha
 };
+
+// The cut-off of an OBJ material with a map_d: a texel whose alpha is below it is cut out.
+inline constexpr float kObjAlphaCutoff = 0.5f;
+
+// Appends the part's decoded textures to `textures` and points its material at them: map_Kd as
+// the base colour texture, map_d as the cut-out's alpha (the part must have a material).
+void add_part_textures(ObjPart& part, std::vector<Texture>& textures);
 
 struct ObjModel {
     std::vector<ObjPart> parts;

@@ -103,6 +103,37 @@ TEST(Model, ATexturedQuadShowsEachTexelWhereItShouldInBothModes) {
         << explain.out;
 }
 
+// OBJ cut-outs: a map_d of grey levels (black on the left half, white on the right; no alpha
+// channel) cuts the quad out where its grey is below 0.5, in front of a red ground quad; the
+// four quadrants of 4×4 texels each are seen through or not, in both modes alike.
+TEST(Model, AnObjMapDCutsOutWhereItsGreyIsBelowOneHalf) {
+    const fs::path dir = fresh_dir();
+    Image mask(4, 4);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x) std::fill_n(mask.pixel(x, y), 3, std::uint8_t(x < 2 ? 0 : 255));
+    write_png(dir / "mask.png", mask);
+    write(dir / "quad.mtl", "newmtl leaf\nKd 0 1 0\nKs 0 0 0\nmap_d -clamp on mask.png\n"
+                            "newmtl ground\nKd 1 0 0\nKs 0 0 0\n");
+    write(dir / "quad.obj", "mtllib quad.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"
+                            "v -9 -9 -1\nv 9 -9 -1\nv 9 9 -1\nv -9 9 -1\n"
+                            "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl leaf\nf 1/1 2/2 3/3 4/4\n"
+                            "usemtl ground\nf 5/1 6/2 7/3 8/4\n");
+    write(dir / "quad.json", R"({"camera": {"eye": [0, 0, 1], "look_at": [0, 0, 0], "fov_y": 90,
+                                             "width": 16, "height": 16},
+                                  "ambient": [1, 1, 1],
+                                  "objects": [{"shape": "mesh", "file": "quad.obj"}]})");
+    for (const char* mode : {"ray", "hybrid"}) {
+        const Outcome r = glint(dir, std::string("render quad.json -o q.png --mode ") + mode);
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        EXPECT_EQ(r.err.find("map_d"), std::string::npos) << r.err; // read, not warned about
+        const Image image = read_png(dir / "q.png");
+        EXPECT_EQ(image.pixel(3, 8)[0], 255) << mode;  // through the cut-out: the red ground
+        EXPECT_EQ(image.pixel(3, 8)[1], 0) << mode;
+        EXPECT_EQ(image.pixel(12, 8)[1], 255) << mode; // the green leaf
+        EXPECT_EQ(image.pixel(12, 8)[0], 0) << mode;
+    }
+}
+
 // A glTF quad with a base colour texture stored in the buffer: the image is decoded, the
 // sampler's wrap modes and TEXCOORD_0 are read, and hybrid equals ray byte for byte.
 TEST(Model, AGltfTextureIsReadWithItsSamplerAndCoordinates) {

@@ -107,6 +107,8 @@ struct Material {
     float alpha = 1.0f;
     bool cut_out = false;
     float alpha_cutoff = 0.5f;
+    // Where the alpha comes from when not the base colour texture (OBJ's map_d), or kNoTexture.
+    std::uint32_t alpha_texture = kNoTexture;
     // Emission (DESIGN §13): this colour × the emission texture's at the hit, added unshadowed.
     glm::vec3 emission{0.0f};
     std::uint32_t emission_texture = kNoTexture;

@@ -39,7 +39,9 @@ SceneGeometry::SceneGeometry(const Scene& scene) : textures(scene.textures) {
     };
     for (const Material& m : scene.materials) {
         std::optional<CutOut> cut_out;
-        if (m.cut_out) cut_out = CutOut{texture(m.texture), m.alpha, m.alpha_cutoff};
+        if (m.cut_out)
+            cut_out = CutOut{texture(m.alpha_texture != kNoTexture ? m.alpha_texture : m.texture),
+                             m.alpha, m.alpha_cutoff};
         materials.push_back({Vec3(m.ambient), Vec3(m.diffuse), Vec3(m.specular), m.shininess,
                              m.reflectivity, m.transmission, m.ior, m.checker.size,
                              Vec3(m.checker.diffuse), Vec3(m.checker.ambient), texture(m.texture),
