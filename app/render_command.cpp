@@ -104,12 +104,13 @@ struct RenderJob {
     Scene scene;
     std::vector<Aov> aovs; // EXR only
     bool srgb = false;     // --colour srgb
+    std::string pattern;   // a sequence's output names, with a number field (or the one name)
 };
 
 // Every check on the input, before anything is rendered or written. On MPI ranks only rank 0
 // writes, so only rank 0 checks where it writes; every rank reads the scene.
 RenderJob prepare(const RenderArgs& args) {
-    RenderJob job{args.scene.scene_path(), args.output, {}, {}, args.colour == "srgb"};
+    RenderJob job{args.scene.scene_path(), args.output, {}, {}, args.colour == "srgb", {}};
     if (job.output.empty())
         job.output = fs::path("out") /
                      job.scene_path.stem().concat(args.sequence() && args.frames > 1 ? "-%04d.png"
@@ -120,17 +121,14 @@ RenderJob prepare(const RenderArgs& args) {
         if (!(args.fps > 0 && args.fps <= 1e6))
             throw UsageError("--fps " + args.fps_option->as<std::string>() +
                              ": must be above 0 (frames a second, at most 1e6)");
-        if (on_ranks())
-            throw UsageError("--frames: a sequence renders on one machine (each frame on every "
-                             "core); run it without mpirun");
         if (!args.stats.empty() || !args.aa_map.empty())
             throw UsageError(std::string(args.stats.empty() ? "--aa-map" : "--stats") +
                              " describes one frame: not with --frames or --orbit");
-        if (!number_field(job.output.string()) && args.frames > 1)
-            throw UsageError("-o " + job.output.string() + ": --frames " +
-                             std::to_string(args.frames) +
+        job.pattern = job.output.string();
+        if (!number_field(job.pattern) && args.frames > 1)
+            throw UsageError("-o " + job.pattern + ": --frames " + std::to_string(args.frames) +
                              " needs a number field in the name, as out/frame-%04d.png");
-        job.output = frame_path(job.output.string(), 0);
+        job.output = frame_path(job.pattern, 0);
     }
     const std::string format = extension_of(job.output); // x.PNG is a PNG, as scenes' names go
     if (format != ".png" && format != ".exr")
@@ -342,13 +340,15 @@ void combine_ranks(Frame& frame, const RankFigures& mine, int threads) {
 // shaders made once; per frame, the animation's pose and the orbit's camera, a World over the
 // shared geometry (its top-level structure built anew), the item buffer uploaded and drawn,
 // the frame traced and written.
+//
+// Under mpirun the frames are spread over the ranks, frame k on rank k mod ranks: each rank
+// renders its frames whole, with every core it has, and writes them itself (no exchange); every
+// rank has checked the input before any renders.
 int run_sequence(const RenderArgs& args) {
     const Stopwatch total;
-    RenderJob job = prepare(args);
-    const std::string pattern =
-        args.output.empty() ? (fs::path("out") / job.scene_path.stem()).string() +
-                                  (args.frames > 1 ? "-%04d.png" : ".png")
-                            : args.output;
+    RenderJob job;
+    if (const int status = agree_on([&] { job = prepare(args); })) return status;
+    const std::string who = on_ranks() ? "rank " + std::to_string(rank()) + ": " : "";
     Scene& scene = job.scene;
     const Camera unorbited = scene.camera;
     FrameSettings settings = args.frame.settings();
@@ -357,17 +357,22 @@ int run_sequence(const RenderArgs& args) {
     const Stopwatch prepare_watch;
     const auto geometry = std::make_shared<const SceneGeometry>(scene);
     const double prepare_seconds = prepare_watch.seconds();
-    const std::string moving =
-        scene.animation ? scene.animation->name() + ", " +
-                              std::to_string(scene.animation->duration()).substr(0, 5) + " s"
-                        : "no animation";
-    std::printf("glint: %d frame%s of %s at %g fps from t = %g s (%s%s); meshes and BVHs "
-                "prepared once in %.3f s\n",
-                args.frames, args.frames == 1 ? "" : "s", job.scene_path.c_str(), args.fps,
-                args.scene.time, moving.c_str(), args.orbit ? ", orbiting" : "", prepare_seconds);
+    char moving[256] = "no animation";
+    if (scene.animation)
+        std::snprintf(moving, sizeof moving, "%s, %g s", scene.animation->name().c_str(),
+                      scene.animation->duration());
+    if (rank() == 0)
+        std::printf("glint: %d frame%s of %s at %g fps from t = %g s (%s%s)%s\n", args.frames,
+                    args.frames == 1 ? "" : "s", job.scene_path.c_str(), args.fps,
+                    args.scene.time, moving, args.orbit ? ", orbiting" : "",
+                    on_ranks() ? (", frame k on rank k mod " + std::to_string(ranks())).c_str()
+                               : "");
+    std::printf("%smeshes, BVHs and textures prepared once in %.3f s\n", who.c_str(),
+                prepare_seconds);
     std::fflush(stdout);
     double traced = 0;
-    for (int k = 0; k < args.frames; ++k) {
+    int written = 0;
+    for (int k = rank(); k < args.frames; k += ranks()) {
         const Stopwatch frame_watch;
         const double t = args.scene.time + k / args.fps;
         if (scene.animation && k > 0) {
@@ -379,16 +384,25 @@ int run_sequence(const RenderArgs& args) {
         }
         if (args.orbit) scene.camera = orbit_camera(unorbited, k, args.frames);
         const World world(scene, geometry, args.scene.accel_kind());
-        const Frame frame = render_frame(world, settings, nullptr, gl ? &*gl : nullptr);
+        std::atomic<int> tiles_done{0};
+        Frame frame;
+        {
+            // A long frame shows its tiles as a single render does (a terminal only).
+            const Progress progress(
+                who + "frame " + std::to_string(k + 1) + "/" + std::to_string(args.frames),
+                progress_steps(scene.render, scene.camera.width, scene.camera.height), tiles_done);
+            frame = render_frame(world, settings, &tiles_done, gl ? &*gl : nullptr);
+        }
         traced += frame.times.total();
-        job.output = frame_path(pattern, k);
+        job.output = frame_path(job.pattern, k);
         write_image(job, frame.result);
-        std::printf("frame %d/%d (t = %.4g s): wrote %s in %.3f s\n", k + 1, args.frames, t,
-                    job.output.c_str(), frame_watch.seconds());
+        ++written;
+        std::printf("%sframe %d/%d (t = %.4g s): wrote %s in %.3f s\n", who.c_str(), k + 1,
+                    args.frames, t, job.output.c_str(), frame_watch.seconds());
         std::fflush(stdout);
     }
-    std::printf("glint: wrote %d frame%s (%dx%d, %s) in %.3f s (render %.3f s)\n", args.frames,
-                args.frames == 1 ? "" : "s", scene.camera.width, scene.camera.height,
+    std::printf("%sglint: wrote %d frame%s (%dx%d, %s) in %.3f s (render %.3f s)\n", who.c_str(),
+                written, written == 1 ? "" : "s", scene.camera.width, scene.camera.height,
                 args.frame.describe().c_str(), total.seconds(), traced);
     return 0;
 }

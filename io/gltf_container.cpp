@@ -112,8 +112,12 @@ class Precheck {
     // A glTF 1.0 file says so in its asset (its buffers are an object, which would otherwise be
     // the first complaint).
     void version() const {
-        if (!root_.contains("asset") || !root_["asset"].is_object()) return;
-        const json& v = root_["asset"]["version"];
+        // find(), not []: on a const json, [] of a missing key is undefined behaviour.
+        const auto asset = root_.find("asset");
+        if (asset == root_.end() || !asset->is_object()) return;
+        const auto version = asset->find("version");
+        if (version == asset->end()) return;
+        const json& v = *version;
         if (v.is_string() && v.get<std::string>().starts_with("1."))
             fail("/asset/version", "glTF " + printable(v.get<std::string>()) +
                                        ": glint reads glTF 2.0 (convert the file, e.g. with "

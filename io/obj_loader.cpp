@@ -455,38 +455,40 @@ ObjModel load_obj(const std::filesystem::path& path) {
         std::replace(slashed.begin(), slashed.end(), '\\', '/');
         return dir / slashed;
     };
-    std::map<std::string, std::shared_ptr<const TextureImage>> images; // each file decoded once
-    for (ObjPart& part : model.parts) {
-        if (part.texture_file.empty() || part.mesh.uvs.empty()) continue;
-        auto [it, added] = images.emplace(part.texture_file, nullptr);
+    // Each file decoded once, for map_Kd and map_d apart (a map_d's alpha is made from it).
+    using Decoded = std::map<std::string, std::shared_ptr<const TextureImage>>;
+    Decoded colours, alphas;
+    const auto decode = [&](Decoded& decoded, const ObjPart& part, const std::string& file,
+                            const char* statement, auto&& adjust) {
+        auto [it, added] = decoded.emplace(file, nullptr);
         if (added)
-            if (auto image = load_texture(texture_path(dir, part.texture_file),
+            if (auto image = load_texture(texture_path(dir, file),
                                           path.string() + ": material '" +
-                                              printable(part.material_name) + "' map_Kd",
-                                          model.warnings))
-                it->second = std::make_shared<const TextureImage>(std::move(*image));
-        if (it->second) part.texture = Texture{it->second, part.texture_wrap, part.texture_wrap};
-    }
-    // map_d: the image's alpha channel, or where it has none its grey level (the mean of its
-    // channels), becomes the alpha a cut-out reads.
-    std::map<std::string, std::shared_ptr<const TextureImage>> alphas;
-    for (ObjPart& part : model.parts) {
-        if (part.alpha_file.empty() || part.mesh.uvs.empty()) continue;
-        auto [it, added] = alphas.emplace(part.alpha_file, nullptr);
-        if (added)
-            if (auto image = load_texture(texture_path(dir, part.alpha_file),
-                                          path.string() + ": material '" +
-                                              printable(part.material_name) + "' map_d",
+                                              printable(part.material_name) + "' " + statement,
                                           model.warnings)) {
-                if (image->alpha.empty()) {
-                    image->alpha.resize(image->rgb.size() / 3);
-                    for (std::size_t i = 0; i < image->alpha.size(); ++i)
-                        image->alpha[i] = static_cast<std::uint8_t>(
-                            (image->rgb[3 * i] + image->rgb[3 * i + 1] + image->rgb[3 * i + 2] + 1) / 3);
-                }
+                adjust(*image);
                 it->second = std::make_shared<const TextureImage>(std::move(*image));
             }
-        if (it->second) part.alpha = Texture{it->second, part.alpha_wrap, part.alpha_wrap};
+        return it->second;
+    };
+    for (ObjPart& part : model.parts) {
+        if (part.mesh.uvs.empty()) continue;
+        if (!part.texture_file.empty())
+            if (const auto image =
+                    decode(colours, part, part.texture_file, "map_Kd", [](TextureImage&) {}))
+                part.texture = Texture{image, part.texture_wrap, part.texture_wrap};
+        // map_d: the image's alpha channel, or where it has none its grey level (the mean of
+        // its channels), becomes the alpha a cut-out reads.
+        if (!part.alpha_file.empty())
+            if (const auto image =
+                    decode(alphas, part, part.alpha_file, "map_d", [](TextureImage& image) {
+                        if (!image.alpha.empty()) return;
+                        image.alpha.resize(image.rgb.size() / 3);
+                        for (std::size_t i = 0; i < image.alpha.size(); ++i)
+                            image.alpha[i] = static_cast<std::uint8_t>(
+                                (image.rgb[3 * i] + image.rgb[3 * i + 1] + image.rgb[3 * i + 2] + 1) / 3);
+                    }))
+                part.alpha = Texture{image, part.alpha_wrap, part.alpha_wrap};
     }
     return model;
 }

@@ -420,6 +420,20 @@ TEST(Model, BadGltfInputNamesTheFileAndThePlace) {
     }
 }
 
+// fuzz_gltf found it (2026-12-05): the glTF 1.0 check read `asset.version` through a const
+// json's [] where the asset has no version, which is undefined behaviour (a read of freed
+// memory under ASan). An asset without a version is now simply not a 1.0 file.
+TEST(Model, AnAssetWithoutAVersionIsReadSafely) {
+    GltfBuilder b = triangle();
+    b.doc["asset"] = json::object();
+    try {
+        const Scene scene = parse_gltf(b.gltf(), "noversion.gltf", {});
+        EXPECT_EQ(scene.objects.size(), 1u);
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("noversion.gltf"), std::string::npos) << e.what();
+    }
+}
+
 TEST(Model, BadModelFilesExitTwoAndWriteNothing) {
     const fs::path dir = fresh_dir();
     GltfBuilder b = triangle();

@@ -12,6 +12,8 @@
 #                                           CSV, timings (and the Pareto marks they decide) aside
 #   mpi_test.sh GLINT MPIRUN killed-rank    a rank killed mid-render ends the run with an error,
 #                                           not a hang, and leaves no output
+#   mpi_test.sh GLINT MPIRUN frames         a sequence's frames spread over 2 ranks are the single
+#                                           process's, file for file
 set -euo pipefail
 glint=$(realpath "$1") mpirun=$2 what=$3
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -125,6 +127,16 @@ killed-rank)
   [ ! -e killed.png ] || fail "an image was written"
   [ -z "$(ls -A | grep -v '^out.txt$\|^err.txt$')" ] || fail "files left: $(ls -A)"
   echo "rank 1 killed: mpirun exited $code after $((SECONDS - started)) s, no image"
+  ;;
+frames)
+  args=("$root/scenes/default.json" --frames 5 --orbit --size 48x36 --threads 1)
+  "$glint" render "${args[@]}" -o "$work/one-%d.png" >/dev/null
+  "$mpirun" -np 2 --bind-to none "$glint" render "${args[@]}" -o "$work/many-%d.png" >"$work/out.txt"
+  for k in 0 1 2 3 4; do
+    cmp -s "$work/one-$k.png" "$work/many-$k.png" || fail "frame $k differs from the single process's"
+  done
+  grep -q "rank 1: frame 4/5" "$work/out.txt" || fail "frame 4 was not rank 1's"
+  echo "5 frames over 2 ranks, each the single process's"
   ;;
 *) fail "unknown test $what" ;;
 esac
