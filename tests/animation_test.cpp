@@ -174,6 +174,31 @@ TEST(Animation, FramesAndOrbitWriteOneFileAFrame) {
               std::string(std::istreambuf_iterator<char>(h), {}));
 }
 
+// A sequence's frame k is the one `--time k/F` renders alone, byte for byte, where the file
+// brings its camera (a framed model is framed once, at the first frame's pose, so there the
+// two differ by the framing alone).
+TEST(Animation, ASequencesFramesAreTheInstantsRenderedAlone) {
+    const fs::path dir = testing::fresh_dir("glint_animation_instants");
+    GltfBuilder b = animated();
+    b.doc["cameras"].push_back({{"type", "perspective"}, {"perspective", {{"yfov", 0.9}, {"znear", 0.1}}}});
+    b.node({{"camera", 0}, {"translation", {2, 2, 14}}});
+    write(dir / "walk.gltf", b.gltf());
+    for (const char* mode : {"ray", "hybrid"}) {
+        const std::string common = std::string(" --size 40x30 --mode ") + mode;
+        Outcome r = glint(dir, "render walk.gltf --frames 4 --fps 0.8 -o f-%d.png" + common);
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        for (int k = 1; k < 4; ++k) {
+            r = glint(dir, "render walk.gltf --time " + std::to_string(k / 0.8) + " -o t.png" + common);
+            ASSERT_EQ(r.exit_code, 0) << r.err;
+            std::ifstream a(dir / ("f-" + std::to_string(k) + ".png"), std::ios::binary);
+            std::ifstream t(dir / "t.png", std::ios::binary);
+            EXPECT_EQ(std::string(std::istreambuf_iterator<char>(a), {}),
+                      std::string(std::istreambuf_iterator<char>(t), {}))
+                << mode << " frame " << k;
+        }
+    }
+}
+
 // Each exits 2 with the place named, and writes nothing.
 TEST(Animation, BadInputExitsTwoAndWritesNothing) {
     const fs::path dir = testing::fresh_dir("glint_animation_bad");

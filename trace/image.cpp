@@ -39,14 +39,24 @@ std::uint8_t to_srgb_byte(float c) {
     return static_cast<std::uint8_t>(static_cast<int>(255.0 * v + 0.5));
 }
 
-Image to_srgb_bytes(const FloatImage& colour) {
+namespace {
+
+// Each channel of `colour` through `encode`, in parallel bands of rows: a frame's bytes are made
+// as it is written.
+template <class Encode> Image encoded(const FloatImage& colour, Encode encode) {
     Image image = Image::uninitialised(colour.width, colour.height);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, colour.rgb.size(), 1 << 16),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                           for (std::size_t i = r.begin(); i != r.end(); ++i)
-                              image.rgb[i] = to_srgb_byte(colour.rgb[i]);
+                              image.rgb[i] = encode(colour.rgb[i]);
                       });
     return image;
+}
+
+} // namespace
+
+Image to_srgb_bytes(const FloatImage& colour) {
+    return encoded(colour, to_srgb_byte);
 }
 
 float srgb_to_linear(std::uint8_t byte) {
@@ -62,14 +72,7 @@ float srgb_to_linear(std::uint8_t byte) {
 }
 
 Image to_bytes(const FloatImage& colour) {
-    Image image = Image::uninitialised(colour.width, colour.height);
-    // In parallel bands of rows: a frame's bytes are made as it is written.
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, colour.rgb.size(), 1 << 16),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t i = r.begin(); i != r.end(); ++i)
-                              image.rgb[i] = to_byte(colour.rgb[i]);
-                      });
-    return image;
+    return encoded(colour, to_byte);
 }
 
 } // namespace glint
