@@ -10,10 +10,19 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
+namespace tinygltf {
+class Model;
+class Node;
+}
+
 namespace glint {
+
+class GltfAccessors;
 
 enum class Interpolation : std::uint8_t { step, linear, cubic_spline };
 enum class TrsPath : std::uint8_t { translation, rotation, scale };
@@ -34,10 +43,13 @@ glm::dvec4 sample_keys(const KeyFrames& keys, double t, bool rotation);
 // A node's local transform as glTF composes it: T · R · S.
 struct NodeTrs {
     DVec3 translation{0.0};
-    glm::dvec4 rotation{0, 0, 0, 1}; // x, y, z, w
+    glm::dvec4 rotation{0, 0, 0, 1}; // x, y, z, w: a unit quaternion
     DVec3 scale{1.0};
 };
 DMat4 trs_matrix(const NodeTrs& trs);
+// A node's own TRS (absent parts the identity's), its rotation normalised; the loader has
+// checked the arrays' sizes and that the rotation is not zero.
+NodeTrs node_trs(const tinygltf::Node& node);
 
 // What the loader records of a model's node tree and the chosen animation, so that poses at other
 // times need no second reading of the file.
@@ -76,6 +88,19 @@ class GltfMotion final : public Animation {
     double duration() const override;
     void pose(Scene& scene, double t) const override;
 };
+
+// What a reader skips with a warning: the feature, and the first place it is met.
+using UnusedFeature = std::function<void(const std::string& feature, const std::string& place)>;
+
+// Animation `index` of `model` (in range: the caller checks), its channels and keys checked
+// (docs/SCENES.md, "Animation"): key times finite and strictly increasing, outputs of the
+// channel's type and count, rotations not zero, no animated node placed by a matrix; morph
+// target weights and channels without a node are skipped through `unused`. Its nodes are sized
+// for the model and left for the loader's walk to fill (the nodes' own TRS, children, roots,
+// and what hangs on them).
+std::shared_ptr<GltfMotion> read_gltf_animation(const tinygltf::Model& model, int index,
+                                                const GltfAccessors& accessors,
+                                                const UnusedFeature& unused);
 
 // A file camera's eye, look-at point and up from its node's world matrix (DESIGN §12: the
 // node's −Z is the viewing direction, its +Y up).

@@ -1,6 +1,7 @@
 #include "io/gltf_loader.h"
 
 #include "io/error.h"
+#include "io/gltf_accessors.h"
 #include "io/gltf_animation.h"
 #include "io/gltf_container.h"
 #include "io/model_scene.h"
@@ -23,14 +24,6 @@ namespace {
 
 // Objects a model may place (nodes × primitives): beyond, a small file would fill the memory.
 constexpr std::size_t kMaxModelObjects = std::size_t{1} << 22;
-// Keys an animation sampler may hold.
-constexpr std::size_t kMaxAnimationKeys = std::size_t{1} << 22;
-
-std::string format_number(double v) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%g", v);
-    return text;
-}
 
 // glint's reading of a parsed model: its accessors checked and read, its node tree walked into
 // placed meshes, its materials mapped to Phong (docs/SCENES.md, "glTF").
@@ -38,7 +31,7 @@ class Reader {
   public:
     Reader(const tinygltf::Model& model, const std::string& name, const ModelFiles& files,
            const ModelOptions& options, std::vector<std::string> warnings)
-        : m_(model), name_(name), files_(files), options_(options) {
+        : m_(model), name_(name), files_(files), options_(options), accessors_(model, name) {
         scene_.warnings = std::move(warnings);
     }
 
@@ -69,153 +62,6 @@ class Reader {
     }
     void unused(const std::string& feature, const std::string& place) {
         unused_.emplace(feature, place); // the first place of each
-    }
-
-    // ---- accessors -------------------------------------------------------------------------
-
-    static int component_bytes(int type) {
-        switch (type) {
-        case TINYGLTF_COMPONENT_TYPE_BYTE:
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
-        case TINYGLTF_COMPONENT_TYPE_SHORT:
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-        default: return 0;
-        }
-    }
-
-    static double component(const unsigned char* p, int type, bool normalized) {
-        switch (type) {
-        case TINYGLTF_COMPONENT_TYPE_BYTE: {
-            const auto v = static_cast<std::int8_t>(*p);
-            return normalized ? std::max(v / 127.0, -1.0) : v;
-        }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? *p / 255.0 : *p;
-        case TINYGLTF_COMPONENT_TYPE_SHORT: {
-            std::int16_t v;
-            std::memcpy(&v, p, 2);
-            return normalized ? std::max(v / 32767.0, -1.0) : v;
-        }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-            std::uint16_t v;
-            std::memcpy(&v, p, 2);
-            return normalized ? v / 65535.0 : v;
-        }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
-            std::uint32_t v;
-            std::memcpy(&v, p, 4);
-            return v;
-        }
-        default: {
-            float v;
-            std::memcpy(&v, p, 4);
-            return v;
-        }
-        }
-    }
-
-    // The bytes of buffer view `view` from `offset`, for `count` elements of `element` bytes
-    // `stride` apart: checked against the view and its buffer, and returned.
-    const unsigned char* view_bytes(int view, std::size_t offset, std::size_t count,
-                                    std::size_t element, std::size_t stride,
-                                    const std::string& at) const {
-        if (view < 0 || static_cast<std::size_t>(view) >= m_.bufferViews.size())
-            fail(at, "no buffer view " + std::to_string(view));
-        const tinygltf::BufferView& v = m_.bufferViews[static_cast<std::size_t>(view)];
-        const std::string view_at = pointer("bufferViews", static_cast<std::size_t>(view));
-        if (v.buffer < 0 || static_cast<std::size_t>(v.buffer) >= m_.buffers.size())
-            fail(view_at + "/buffer", "no buffer " + std::to_string(v.buffer));
-        const std::size_t size = m_.buffers[static_cast<std::size_t>(v.buffer)].data.size();
-        if (v.byteLength > size || v.byteOffset > size - v.byteLength)
-            fail(view_at, "bytes " + std::to_string(v.byteOffset) + " to " +
-                              std::to_string(v.byteOffset + v.byteLength) + " are beyond buffer " +
-                              std::to_string(v.buffer) + "'s " + std::to_string(size) + " bytes");
-        if (count > 0 && (element > v.byteLength || offset > v.byteLength - element ||
-                          (count - 1) > (v.byteLength - element - offset) / stride))
-            fail(at, std::to_string(count) + " elements of " + std::to_string(element) +
-                         " bytes, " + std::to_string(stride) + " apart from byte " +
-                         std::to_string(offset) + ", run past the end of " + view_at + " (" +
-                         std::to_string(v.byteLength) + " bytes)");
-        return m_.buffers[static_cast<std::size_t>(v.buffer)].data.data() + v.byteOffset + offset;
-    }
-
-    // Accessor `index`, named by `use` (where it is referred to), read as `width` components per
-    // element, each converted to double: every bound checked first, sparse values applied.
-    std::vector<double> read_accessor(int index, int type, int width,
-                                      std::initializer_list<int> component_types,
-                                      const std::string& use, std::size_t max_count) const {
-        if (index < 0 || static_cast<std::size_t>(index) >= m_.accessors.size())
-            fail(use, "no accessor " + std::to_string(index));
-        const tinygltf::Accessor& a = m_.accessors[static_cast<std::size_t>(index)];
-        const std::string at = pointer("accessors", static_cast<std::size_t>(index));
-        if (a.type != type)
-            fail(at + "/type", "is not the type " + use + " needs (" +
-                                   (type == TINYGLTF_TYPE_SCALAR ? "SCALAR"
-                                                                 : "VEC" + std::to_string(width)) +
-                                   ")");
-        if (std::find(component_types.begin(), component_types.end(), a.componentType) ==
-            component_types.end())
-            fail(at + "/componentType", "component type " + std::to_string(a.componentType) +
-                                            " is not one " + use + " may have");
-        if (a.count == 0) fail(at + "/count", "must be at least 1");
-        if (a.count > max_count)
-            fail(at + "/count", std::to_string(a.count) + " elements; the limit is " +
-                                    std::to_string(max_count));
-        const std::size_t bytes = static_cast<std::size_t>(component_bytes(a.componentType));
-        const std::size_t element = bytes * static_cast<std::size_t>(width);
-        std::vector<double> out(a.count * static_cast<std::size_t>(width), 0.0);
-        if (a.bufferView >= 0) {
-            if (static_cast<std::size_t>(a.bufferView) >= m_.bufferViews.size())
-                fail(at + "/bufferView", "no buffer view " + std::to_string(a.bufferView));
-            const tinygltf::BufferView& v = m_.bufferViews[static_cast<std::size_t>(a.bufferView)];
-            const std::size_t stride = v.byteStride ? v.byteStride : element;
-            if (v.byteStride && (v.byteStride < element || v.byteStride % bytes != 0))
-                fail(pointer("bufferViews", static_cast<std::size_t>(a.bufferView)) + "/byteStride",
-                     "a stride of " + std::to_string(v.byteStride) + " bytes cannot hold " +
-                         at + "'s elements of " + std::to_string(element));
-            const unsigned char* p =
-                view_bytes(a.bufferView, a.byteOffset, a.count, element, stride, at);
-            for (std::size_t i = 0; i < a.count; ++i)
-                for (int c = 0; c < width; ++c)
-                    out[i * width + c] =
-                        component(p + i * stride + c * bytes, a.componentType, a.normalized);
-        }
-        if (a.sparse.isSparse) {
-            const std::string sparse_at = at + "/sparse";
-            if (a.sparse.count < 1 || static_cast<std::size_t>(a.sparse.count) > a.count)
-                fail(sparse_at + "/count", "must be 1 to the accessor's count");
-            const auto n = static_cast<std::size_t>(a.sparse.count);
-            const int index_type = a.sparse.indices.componentType;
-            const int index_bytes = component_bytes(index_type);
-            if (index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-                index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-                index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-                fail(sparse_at + "/indices/componentType", "must be an unsigned integer type");
-            if (a.sparse.indices.byteOffset < 0 || a.sparse.values.byteOffset < 0)
-                fail(sparse_at, "byte offsets must not be negative");
-            const unsigned char* indices =
-                view_bytes(a.sparse.indices.bufferView,
-                           static_cast<std::size_t>(a.sparse.indices.byteOffset), n,
-                           static_cast<std::size_t>(index_bytes),
-                           static_cast<std::size_t>(index_bytes), sparse_at + "/indices");
-            const unsigned char* values =
-                view_bytes(a.sparse.values.bufferView,
-                           static_cast<std::size_t>(a.sparse.values.byteOffset), n, element,
-                           element, sparse_at + "/values");
-            for (std::size_t k = 0; k < n; ++k) {
-                const auto target =
-                    static_cast<std::size_t>(component(indices + k * index_bytes, index_type, false));
-                if (target >= a.count)
-                    fail(sparse_at + "/indices", "index " + std::to_string(k) + " is " +
-                                                     std::to_string(target) + ", beyond count " +
-                                                     std::to_string(a.count));
-                for (int c = 0; c < width; ++c)
-                    out[target * width + c] =
-                        component(values + k * element + c * bytes, a.componentType, a.normalized);
-            }
-        }
-        return out;
     }
 
     // ---- meshes ----------------------------------------------------------------------------
@@ -264,7 +110,7 @@ class Reader {
         if (attribute("POSITION") < 0) fail(at + "/attributes", "a primitive needs a POSITION");
         const std::string positions_at = at + "/attributes/POSITION";
         const std::vector<double> xyz =
-            read_accessor(attribute("POSITION"), TINYGLTF_TYPE_VEC3, 3,
+            accessors_.read_accessor(attribute("POSITION"), TINYGLTF_TYPE_VEC3, 3,
                           {TINYGLTF_COMPONENT_TYPE_FLOAT}, positions_at, kMaxMeshVertices);
         const std::size_t n = xyz.size() / 3;
         TriangleMesh mesh;
@@ -275,7 +121,7 @@ class Reader {
             {pointer("accessors", static_cast<std::size_t>(attribute("POSITION"))), -1});
         if (attribute("NORMAL") >= 0) {
             const std::vector<double> normals =
-                read_accessor(attribute("NORMAL"), TINYGLTF_TYPE_VEC3, 3,
+                accessors_.read_accessor(attribute("NORMAL"), TINYGLTF_TYPE_VEC3, 3,
                               {TINYGLTF_COMPONENT_TYPE_FLOAT}, at + "/attributes/NORMAL", n);
             if (normals.size() != xyz.size())
                 fail(at + "/attributes/NORMAL", "has a count other than POSITION's");
@@ -288,7 +134,7 @@ class Reader {
             }
         }
         if (attribute("TEXCOORD_0") >= 0) {
-            const std::vector<double> uv = read_accessor(
+            const std::vector<double> uv = accessors_.read_accessor(
                 attribute("TEXCOORD_0"), TINYGLTF_TYPE_VEC2, 2,
                 {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
                  TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
@@ -303,7 +149,7 @@ class Reader {
             const bool rgba = static_cast<std::size_t>(index) < m_.accessors.size() &&
                               m_.accessors[static_cast<std::size_t>(index)].type == TINYGLTF_TYPE_VEC4;
             const int width = rgba ? 4 : 3;
-            const std::vector<double> c = read_accessor(
+            const std::vector<double> c = accessors_.read_accessor(
                 index, rgba ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3, width,
                 {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
                  TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
@@ -324,7 +170,7 @@ class Reader {
         }
         if (attribute("TANGENT") >= 0) {
             const std::vector<double> t =
-                read_accessor(attribute("TANGENT"), TINYGLTF_TYPE_VEC4, 4,
+                accessors_.read_accessor(attribute("TANGENT"), TINYGLTF_TYPE_VEC4, 4,
                               {TINYGLTF_COMPONENT_TYPE_FLOAT}, at + "/attributes/TANGENT", n);
             if (t.size() != 4 * n) fail(at + "/attributes/TANGENT", "has a count other than POSITION's");
             for (std::size_t i = 0; i < n; ++i) {
@@ -340,7 +186,7 @@ class Reader {
         std::vector<std::uint32_t> corners;
         if (p.indices >= 0) {
             const std::string indices_at = pointer("accessors", static_cast<std::size_t>(p.indices));
-            const std::vector<double> indices = read_accessor(
+            const std::vector<double> indices = accessors_.read_accessor(
                 p.indices, TINYGLTF_TYPE_SCALAR, 1,
                 {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
                  TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
@@ -604,8 +450,7 @@ class Reader {
 
     // ---- animation -------------------------------------------------------------------------
 
-    // The chosen animation's channels and keys, checked (docs/SCENES.md, "Animation"): what
-    // the walk and GltfMotion::pose read.
+    // The chosen animation (io/gltf_animation.h), or a note where the file has none.
     void read_animation() {
         const int count = static_cast<int>(m_.animations.size());
         const int k = options_.animation;
@@ -618,108 +463,10 @@ class Reader {
                              (count == 0 ? "no animations"
                                          : std::to_string(count) + " animation(s), 0 to " +
                                                std::to_string(count - 1)));
-        const tinygltf::Animation& a = m_.animations[static_cast<std::size_t>(k)];
-        const std::string at = pointer("animations", static_cast<std::size_t>(k));
-        auto motion = std::make_shared<GltfMotion>();
-        motion->label = "animation " + std::to_string(k) +
-                        (a.name.empty() ? "" : " (" + printable(a.name) + ")");
-        motion->nodes.resize(m_.nodes.size());
-        for (std::size_t i = 0; i < a.channels.size(); ++i) {
-            const tinygltf::AnimationChannel& c = a.channels[i];
-            const std::string channel_at = at + "/channels/" + std::to_string(i);
-            if (c.target_node < 0) {
-                unused("animation channels without a target node", channel_at);
-                continue;
-            }
-            if (static_cast<std::size_t>(c.target_node) >= m_.nodes.size())
-                fail(channel_at + "/target/node", "no node " + std::to_string(c.target_node));
-            TrsPath path;
-            if (c.target_path == "translation") path = TrsPath::translation;
-            else if (c.target_path == "rotation") path = TrsPath::rotation;
-            else if (c.target_path == "scale") path = TrsPath::scale;
-            else if (c.target_path == "weights") {
-                unused("morph target weights (animation channels)", channel_at);
-                continue;
-            } else {
-                fail(channel_at + "/target/path",
-                     "must be translation, rotation, scale or weights, not '" +
-                         printable(c.target_path) + "'");
-            }
-            if (c.sampler < 0 || static_cast<std::size_t>(c.sampler) >= a.samplers.size())
-                fail(channel_at + "/sampler", "no sampler " + std::to_string(c.sampler));
-            if (!m_.nodes[static_cast<std::size_t>(c.target_node)].matrix.empty())
-                fail(pointer("nodes", static_cast<std::size_t>(c.target_node)) + "/matrix",
-                     "an animated node must be placed by translation, rotation and scale, not "
-                     "a matrix (" + channel_at + " moves it)");
-            motion->samplers.push_back(keys(a.samplers[static_cast<std::size_t>(c.sampler)],
-                                            at + "/samplers/" + std::to_string(c.sampler), path));
-            motion->channels.push_back({static_cast<std::size_t>(c.target_node), path,
-                                        motion->samplers.size() - 1});
-        }
-        motion_ = std::move(motion);
-    }
-
-    // A sampler's keys for a channel of `path`: times strictly increasing, outputs of the path's
-    // type, one (three for CUBICSPLINE) a key.
-    KeyFrames keys(const tinygltf::AnimationSampler& s, const std::string& at, TrsPath path) const {
-        KeyFrames out;
-        if (s.interpolation.empty() || s.interpolation == "LINEAR")
-            out.interpolation = Interpolation::linear;
-        else if (s.interpolation == "STEP")
-            out.interpolation = Interpolation::step;
-        else if (s.interpolation == "CUBICSPLINE")
-            out.interpolation = Interpolation::cubic_spline;
-        else
-            fail(at + "/interpolation", "must be LINEAR, STEP or CUBICSPLINE, not '" +
-                                            printable(s.interpolation) + "'");
-        out.times = read_accessor(s.input, TINYGLTF_TYPE_SCALAR, 1, {TINYGLTF_COMPONENT_TYPE_FLOAT},
-                                  at + "/input", kMaxAnimationKeys);
-        const std::string input_at = pointer("accessors", static_cast<std::size_t>(s.input));
-        for (std::size_t k = 0; k < out.times.size(); ++k) {
-            if (!std::isfinite(out.times[k]))
-                fail(input_at, "key time " + std::to_string(k) + " is not a finite number");
-            if (k > 0 && !(out.times[k] > out.times[k - 1]))
-                fail(input_at, "key times must increase: key " + std::to_string(k) + " (" +
-                                   format_number(out.times[k]) + " s) does not come after key " +
-                                   std::to_string(k - 1) + " (" +
-                                   format_number(out.times[k - 1]) + " s)");
-        }
-        const bool rotation = path == TrsPath::rotation;
-        out.width = rotation ? 4 : 3;
-        const std::size_t per_key = out.interpolation == Interpolation::cubic_spline ? 3 : 1;
-        const std::size_t wanted = out.times.size() * per_key;
-        const std::string use = at + "/output";
-        out.values = rotation
-                         ? read_accessor(s.output, TINYGLTF_TYPE_VEC4, 4,
-                                         {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
-                                          TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-                                          TINYGLTF_COMPONENT_TYPE_SHORT,
-                                          TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
-                                         use, kMaxAnimationKeys * 3)
-                         : read_accessor(s.output, TINYGLTF_TYPE_VEC3, 3,
-                                         {TINYGLTF_COMPONENT_TYPE_FLOAT}, use,
-                                         kMaxAnimationKeys * 3);
-        const std::string output_at = pointer("accessors", static_cast<std::size_t>(s.output));
-        const std::size_t count = out.values.size() / static_cast<std::size_t>(out.width);
-        if (count != wanted)
-            fail(output_at + "/count",
-                 std::to_string(count) + " elements, where the sampler's " +
-                     std::to_string(out.times.size()) + " keys need " + std::to_string(wanted) +
-                     (per_key == 3 ? " (CUBICSPLINE: in-tangent, value, out-tangent a key)" : ""));
-        for (std::size_t i = 0; i < out.values.size(); ++i)
-            if (!(std::abs(out.values[i]) <= kMaxCoordinate))
-                fail(output_at, "element " + std::to_string(i / out.width) +
-                                    ": values must be finite and within ±1e15");
-        if (rotation)
-            for (std::size_t k = 0; k < count; k += per_key) {
-                const std::size_t v = (k + (per_key == 3 ? 1 : 0)) * 4;
-                const glm::dvec4 q(out.values[v], out.values[v + 1], out.values[v + 2],
-                                   out.values[v + 3]);
-                if (!(glm::length(q) > 0))
-                    fail(output_at, "element " + std::to_string(k + (per_key == 3 ? 1 : 0)) +
-                                        ": a rotation must be a unit quaternion");
-            }
-        return out;
+        motion_ = read_gltf_animation(m_, k, accessors_, [this](const std::string& feature,
+                                                                const std::string& place) {
+            unused(feature, place);
+        });
     }
 
     // ---- nodes -----------------------------------------------------------------------------
@@ -733,40 +480,17 @@ class Reader {
                 for (int r = 0; r < 4; ++r) m[c][r] = n.matrix[static_cast<std::size_t>(4 * c + r)];
             return m;
         }
-        DMat4 t(1.0), r(1.0), s(1.0);
-        if (!n.translation.empty()) {
-            if (n.translation.size() != 3) fail(at + "/translation", "must have 3 numbers");
-            t = translation_matrix({n.translation[0], n.translation[1], n.translation[2]});
-        }
+        if (!n.translation.empty() && n.translation.size() != 3)
+            fail(at + "/translation", "must have 3 numbers");
         if (!n.rotation.empty()) {
             if (n.rotation.size() != 4) fail(at + "/rotation", "must have 4 numbers (x, y, z, w)");
-            glm::dvec4 q(n.rotation[0], n.rotation[1], n.rotation[2], n.rotation[3]);
-            const double length = glm::length(q);
+            const double length = glm::length(
+                glm::dvec4(n.rotation[0], n.rotation[1], n.rotation[2], n.rotation[3]));
             if (!(length > 0) || !std::isfinite(length))
                 fail(at + "/rotation", "must be a unit quaternion");
-            q /= length;
-            const double x = q.x, y = q.y, z = q.z, w = q.w;
-            r[0] = {1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w), 0};
-            r[1] = {2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w), 0};
-            r[2] = {2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y), 0};
         }
-        if (!n.scale.empty()) {
-            if (n.scale.size() != 3) fail(at + "/scale", "must have 3 numbers");
-            s = scale_matrix({n.scale[0], n.scale[1], n.scale[2]});
-        }
-        return t * r * s;
-    }
-
-    // A node's own TRS (local_matrix has checked it).
-    static NodeTrs node_trs(const tinygltf::Node& n) {
-        NodeTrs trs;
-        if (n.translation.size() == 3)
-            trs.translation = {n.translation[0], n.translation[1], n.translation[2]};
-        if (n.rotation.size() == 4)
-            trs.rotation = glm::normalize(
-                glm::dvec4(n.rotation[0], n.rotation[1], n.rotation[2], n.rotation[3]));
-        if (n.scale.size() == 3) trs.scale = {n.scale[0], n.scale[1], n.scale[2]};
-        return trs;
+        if (!n.scale.empty() && n.scale.size() != 3) fail(at + "/scale", "must have 3 numbers");
+        return trs_matrix(node_trs(n));
     }
 
     struct Placed {
@@ -1015,6 +739,7 @@ class Reader {
     const std::string& name_;
     const ModelFiles& files_;
     const ModelOptions& options_;
+    const GltfAccessors accessors_;
     Scene scene_;
     std::map<int, std::vector<std::pair<std::uint32_t, std::uint32_t>>> meshes_;
     std::map<int, std::uint32_t> materials_;
