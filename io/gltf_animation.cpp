@@ -81,16 +81,15 @@ NodeTrs node_trs(const tinygltf::Node& n) {
 }
 
 bool GltfMotion::moves(std::size_t k) const {
-    return std::any_of(channels.begin(), channels.end(),
-                       [&](const Channel& c) { return c.node == k; });
+    return !channels_of[k].empty();
 }
 
 DMat4 GltfMotion::local(std::size_t k, double t) const {
     const Node& n = nodes[k];
     if (!moves(k)) return n.has_matrix ? n.matrix : trs_matrix(n.trs);
     NodeTrs trs = n.trs;
-    for (const Channel& c : channels) {
-        if (c.node != k) continue;
+    for (const std::size_t index : channels_of[k]) {
+        const Channel& c = channels[index];
         const glm::dvec4 v = sample_keys(samplers[c.keys], t, c.path == TrsPath::rotation);
         switch (c.path) {
         case TrsPath::translation: trs.translation = DVec3(v); break;
@@ -161,6 +160,7 @@ class AnimationReader {
         motion->label = "animation " + std::to_string(index) +
                         (a.name.empty() ? "" : " (" + printable(a.name) + ")");
         motion->nodes.resize(m_.nodes.size());
+        motion->channels_of.resize(m_.nodes.size());
         for (std::size_t i = 0; i < a.channels.size(); ++i) {
             const tinygltf::AnimationChannel& c = a.channels[i];
             const std::string channel_at = at + "/channels/" + std::to_string(i);
@@ -190,6 +190,8 @@ class AnimationReader {
                      "a matrix (" + channel_at + " moves it)");
             motion->samplers.push_back(keys(a.samplers[static_cast<std::size_t>(c.sampler)],
                                             at + "/samplers/" + std::to_string(c.sampler), path));
+            motion->channels_of[static_cast<std::size_t>(c.target_node)].push_back(
+                motion->channels.size());
             motion->channels.push_back({static_cast<std::size_t>(c.target_node), path,
                                         motion->samplers.size() - 1});
         }

@@ -72,6 +72,8 @@ class GltfMotion final : public Animation {
     std::vector<std::size_t> roots;
     std::vector<KeyFrames> samplers;
     std::vector<Channel> channels;
+    // Per node, the indices of the channels that move it (made with `channels`).
+    std::vector<std::vector<std::size_t>> channels_of;
     // What the scene's parts hang on: per object and per light, its node; the file camera's
     // node, when the scene looks through one.
     std::vector<std::size_t> object_nodes, light_nodes;
