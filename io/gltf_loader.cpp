@@ -12,8 +12,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
 #include <map>
 #include <numbers>
 #include <set>
@@ -175,7 +173,7 @@ class Reader {
             if (t.size() != 4 * n) fail(at + "/attributes/TANGENT", "has a count other than POSITION's");
             for (std::size_t i = 0; i < n; ++i) {
                 const glm::dvec3 v(t[4 * i], t[4 * i + 1], t[4 * i + 2]);
-                // Where a tangent is not finite, the triangle's own stands in... as none at all.
+                // A tangent that is not finite drops them all: each triangle's own frame stands in.
                 if (!std::isfinite(glm::length(v))) {
                     mesh.tangents.clear();
                     break;

@@ -543,7 +543,7 @@ SurfacePoint World::surface(const Ray& ray, const Hit& hit) const {
     point.object_normal = s.normal;
     if (traits.planar || (traits.convex && !from_inside)) point.skip = hit.object;
     if (traits.planar || (traits.convex && from_inside)) point.skip_through = hit.object;
-    const bool through = geometry_->materials[object.material].transmission > 0;
+    const bool through = material.transmission > 0;
     if (point.skip != kNoObject && (!through || point.skip_through != kNoObject)) return point;
     // Spawn offset (Wächter & Binder, Ray Tracing Gems ch. 6; pbrt-v4's OffsetRayOrigin): a new
     // ray from this point is intersected with this object after mapping back by M⁻¹, so it must
