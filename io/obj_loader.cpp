@@ -404,18 +404,21 @@ ObjModel parse_obj(const std::string& text, const std::string& name,
             const tinyobj::material_t& m = materials[static_cast<std::size_t>(id)];
             b.part.material = mtl_material(m, name);
             b.part.material_name = m.name;
-            b.part.texture_file = m.diffuse_texname;
-            if (m.diffuse_texopt.clamp) b.part.texture_wrap = Wrap::clamp;
-            if (!m.diffuse_texname.empty() && b.part.mesh.uvs.empty())
-                model.warnings.push_back(name + ": material '" + printable(m.name) +
-                                         "': map_Kd not used: its faces have no texture "
-                                         "coordinates (vt) at every corner");
-            b.part.alpha_file = m.alpha_texname;
-            if (m.alpha_texopt.clamp) b.part.alpha_wrap = Wrap::clamp;
-            if (!m.alpha_texname.empty() && b.part.mesh.uvs.empty())
-                model.warnings.push_back(name + ": material '" + printable(m.name) +
-                                         "': map_d not used: its faces have no texture "
-                                         "coordinates (vt) at every corner");
+            // A texture map's file and wrap mode, read where the faces have coordinates for it.
+            const auto texture_map = [&](const std::string& file, const tinyobj::texture_option_t& o,
+                                         const char* statement, std::string& part_file,
+                                         Wrap& wrap) {
+                part_file = file;
+                if (o.clamp) wrap = Wrap::clamp;
+                if (!file.empty() && b.part.mesh.uvs.empty())
+                    model.warnings.push_back(name + ": material '" + printable(m.name) + "': " +
+                                             statement + " not used: its faces have no texture "
+                                                         "coordinates (vt) at every corner");
+            };
+            texture_map(m.diffuse_texname, m.diffuse_texopt, "map_Kd", b.part.texture_file,
+                        b.part.texture_wrap);
+            texture_map(m.alpha_texname, m.alpha_texopt, "map_d", b.part.alpha_file,
+                        b.part.alpha_wrap);
         }
         model.parts.push_back(std::move(b.part));
     }

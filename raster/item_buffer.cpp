@@ -655,21 +655,24 @@ void ItemBuffer::Impl::draw_cut_outs(const World& world, const glm::dmat4& clip,
     glUniform1i(uniform("flat_preview"), flat_preview);
     glUniform1i(uniform("alpha_texture"), 0);
     glActiveTexture(GL_TEXTURE0);
+    // Looked up once, set per object.
+    const GLint mvp_at = uniform("model_view_projection"), model_at = uniform("model"),
+                id_at = uniform("object_id"), diffuse_at = uniform("diffuse"),
+                alpha_at = uniform("alpha"), cutoff_at = uniform("cutoff"),
+                textured_at = uniform("textured"), uv_at = uniform("uv_transform");
     for (const CutOutDraw& d : cut_outs) {
         const Object& o = world.objects()[d.object];
+        const CutOut& cut = *o.params.cut_out;
         const glm::dmat4 model = to_mat4(o.transform.linear, o.transform.offset);
-        glUniformMatrix4fv(uniform("model_view_projection"), 1, GL_FALSE,
-                           glm::value_ptr(glm::mat4(clip * model)));
-        glUniformMatrix4fv(uniform("model"), 1, GL_FALSE, glm::value_ptr(glm::mat4(model)));
-        glUniform1ui(uniform("object_id"), d.object + 1);
-        glUniform3fv(uniform("diffuse"), 1, glm::value_ptr(world.material(d.object).diffuse));
-        glUniform1f(uniform("alpha"), o.params.cut_out->alpha);
-        glUniform1f(uniform("cutoff"), o.params.cut_out->cutoff);
-        glUniform1i(uniform("textured"), d.alpha_texture != 0);
-        const glm::mat3 uv_transform = o.params.cut_out->texture
-                                           ? o.params.cut_out->texture->uv_transform
-                                           : glm::mat3(1.0f);
-        glUniformMatrix3fv(uniform("uv_transform"), 1, GL_FALSE, glm::value_ptr(uv_transform));
+        glUniformMatrix4fv(mvp_at, 1, GL_FALSE, glm::value_ptr(glm::mat4(clip * model)));
+        glUniformMatrix4fv(model_at, 1, GL_FALSE, glm::value_ptr(glm::mat4(model)));
+        glUniform1ui(id_at, d.object + 1);
+        glUniform3fv(diffuse_at, 1, glm::value_ptr(world.material(d.object).diffuse));
+        glUniform1f(alpha_at, cut.alpha);
+        glUniform1f(cutoff_at, cut.cutoff);
+        glUniform1i(textured_at, d.alpha_texture != 0);
+        const glm::mat3 uv_transform = cut.texture ? cut.texture->uv_transform : glm::mat3(1.0f);
+        glUniformMatrix3fv(uv_at, 1, GL_FALSE, glm::value_ptr(uv_transform));
         glBindTexture(GL_TEXTURE_2D, d.alpha_texture);
         glBindVertexArray(geometries[d.geometry].vao);
         glDrawElements(GL_TRIANGLES, geometries[d.geometry].index_count, GL_UNSIGNED_INT, nullptr);
