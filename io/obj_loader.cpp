@@ -405,12 +405,14 @@ ObjModel parse_obj(const std::string& text, const std::string& name,
             b.part.material = mtl_material(m, name);
             b.part.material_name = m.name;
             // A texture map's file and wrap mode, read where the faces have coordinates for it.
+            // (clang 14, the sanitizer build's compiler, cannot capture a structured binding.)
+            const bool no_uvs = b.part.mesh.uvs.empty();
             const auto texture_map = [&](const std::string& file, const tinyobj::texture_option_t& o,
                                          const char* statement, std::string& part_file,
                                          Wrap& wrap) {
                 part_file = file;
                 if (o.clamp) wrap = Wrap::clamp;
-                if (!file.empty() && b.part.mesh.uvs.empty())
+                if (!file.empty() && no_uvs)
                     model.warnings.push_back(name + ": material '" + printable(m.name) + "': " +
                                              statement + " not used: its faces have no texture "
                                                          "coordinates (vt) at every corner");
