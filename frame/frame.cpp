@@ -34,7 +34,7 @@ Frame render_frame(const World& world, const FrameSettings& settings, std::atomi
     }
     frame.result =
         trace_frame(world, primary_source(frame, settings.resolve), frame.primary_stats,
-                    {settings.threads, tiles_done, settings.exchange}, frame.times, settings.aovs);
+                    settings.progress(tiles_done), frame.times, settings.aovs);
     return frame;
 }
 
@@ -47,7 +47,7 @@ Frame render_frame(const Scene& scene, std::optional<AccelKind> accel,
         Frame frame;
         frame.result =
             render_ray_frame(Precision::f64, scene, accel,
-                             {settings.threads, tiles_done, settings.exchange}, frame.times);
+                             settings.progress(tiles_done), frame.times);
         return frame;
     }
     // The GL pass starts first and makes its context and shaders while the World is built.

@@ -35,6 +35,13 @@ struct FrameSettings {
     TileExchange* exchange = nullptr;
     // Keep each pixel centre's primary hit (RenderResult::aovs: depth, normal, id) for an EXR.
     bool aovs = false;
+    // Set from another thread to stop the frame between tiles (the Python module's Ctrl-C): the
+    // frame returned is then incomplete, and its caller says so (frame_cancelled). Null: never.
+    const std::atomic<bool>* cancel = nullptr;
+    // The tiles' schedule as these settings ask for it.
+    TileProgress progress(std::atomic<int>* tiles_done) const {
+        return {threads, tiles_done, exchange, cancel};
+    }
 };
 
 // The one result of a render, in either mode and either precision.

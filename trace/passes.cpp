@@ -14,7 +14,7 @@ bool ThreadSchedule::run(FramePass pass, const RenderResult& result, const TileW
     if (pass == FramePass::spread) progress.tiles_done = nullptr;
     for_each_tile(result.radiance.width, result.radiance.height, progress,
                   [&](int x0, int y0, int x1, int y1) { work({x0, y0, x1, y1}); });
-    return true;
+    return !progress.cancelled();
 }
 
 void ThreadSchedule::finish(FramePass, RenderResult& result, std::vector<std::uint64_t>* keys) {

@@ -54,6 +54,10 @@ struct TileProgress {
     int threads = 0;                        // 0: all cores
     std::atomic<int>* tiles_done = nullptr; // counted as tiles finish
     TileExchange* exchange = nullptr;       // one process of several: its tiles only
+    // Set from outside (Python's Ctrl-C): tiles not yet started are skipped, and the frame's
+    // passes stop (TileSchedule::run returns false). Null: never cancelled.
+    const std::atomic<bool>* cancel = nullptr;
+    bool cancelled() const { return cancel && cancel->load(std::memory_order_relaxed); }
 };
 
 inline int tile_count(int width, int height) {
@@ -106,7 +110,7 @@ template <class Body> void for_each_in_blocks(int x0, int y0, int x1, int y1, co
 
 // Calls body(x0, y0, x1, y1) for each tile of a width×height image, in parallel. With an
 // exchange, for the tiles this process claims (each iteration asks for the next tile instead of
-// taking its own index).
+// taking its own index). Once progress.cancel is set, the tiles not yet begun are skipped.
 template <class Body>
 void for_each_tile(int width, int height, const TileProgress& progress, const Body& body) {
     TileExchange* const exchange = progress.exchange;
@@ -116,6 +120,7 @@ void for_each_tile(int width, int height, const TileProgress& progress, const Bo
             tbb::blocked_range<int>(0, tile_count(width, height), 1),
             [&](const tbb::blocked_range<int>& r) {
                 for (int index = r.begin(); index != r.end(); ++index) {
+                    if (progress.cancelled()) return;
                     int tile = index;
                     if (exchange) {
                         if ((tile = exchange->claim()) < 0) continue;
