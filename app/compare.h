@@ -7,6 +7,9 @@
 #include "app/options.h"
 #include "frame/difference.h"
 
+#include <atomic>
+#include <cstdio>
+#include <memory>
 #include <string>
 
 namespace glint {
@@ -22,6 +25,8 @@ struct CompareArgs {
     bool exr = false; // --exr: also the float error as PREFIX-heat.exr
 
     bool sides() const { return a_option->count() > 0 || b_option->count() > 0; }
+    // compare's options (the command's and the Python module's Scene.compare).
+    void add_to(CLI::App& cmd);
 };
 
 // One side of a comparison from its flags (`flag`: "--a", "--b", "--against", named in every
@@ -33,8 +38,21 @@ struct CompareArgs {
 Side parse_side(const std::string& flag, const std::string& text, const Scene& base,
                 const SceneOptions& shared, const FrameOptions& frame);
 
-// The two-sided compare: checks (nothing rendered or written) and the whole run.
+// Two settings rendered and compared, pixel by pixel: what `glint compare --a … --b …` prints and
+// writes, and what the Python module's Scene.compare returns.
+struct ComparedSides {
+    std::unique_ptr<const RenderedSide> a, b;
+    FrameDifference difference; // per pixel: the error and its cause
+    ImageDifference image;      // PSNR, RMSE, the largest error
+    std::string json;           // as --json writes it (docs/DIFFERENCES.md)
+};
+
+// The two-sided compare: checks (nothing rendered or written), the comparison (Cancelled once
+// `cancel` is set: between the sides, or between tiles of either; a line on `progress`, where
+// given, as each side starts) and the whole run.
 void check_compare_sides(const CompareArgs& args);
+ComparedSides compare_sides(const CompareArgs& args, const std::atomic<bool>* cancel = nullptr,
+                            std::FILE* progress = nullptr);
 int run_compare_sides(const CompareArgs& args);
 
 } // namespace glint

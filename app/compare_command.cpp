@@ -194,25 +194,29 @@ int run_compare(const CompareArgs& args) {
 
 } // namespace
 
+void CompareArgs::add_to(CLI::App& cmd) {
+    scene.add_to(cmd);
+    frame.add_to(cmd, false);
+    cmd.add_option("-o,--output", prefix,
+                   "Write PREFIX-ray.png, -hybrid.png, -diff.png and -ids.png; with --a/--b "
+                   "PREFIX-a.png, -b.png, -heat.png and -causes.png (PREFIX.exr: also "
+                   "PREFIX-heat.exr)");
+    cmd.add_option("--json", json, "Also write the measurements as JSON here");
+    a_option = cmd.add_option(
+        "--a", a,
+        "Side A's render flags, quoted (\"--max-depth 2 --accel grid\"), or exact (ray traced in "
+        "double, depth 64, no cut-off); unset flags are compare's own (docs/DIFFERENCES.md)");
+    b_option = cmd.add_option("--b", b, "Side B's render flags, as --a");
+    cmd.add_flag("--exr", exr,
+                 "With --a/--b: also write the float error |A - B| as PREFIX-heat.exr");
+}
+
 Command add_compare_command(CLI::App& app) {
     auto args = std::make_shared<CompareArgs>();
     CLI::App* cmd = app.add_subcommand(
         "compare", "Render two settings side by side (hybrid and ray mode unless --a/--b say "
                    "otherwise), measure the difference and say why each pixel differs");
-    args->scene.add_to(*cmd);
-    args->frame.add_to(*cmd, false);
-    cmd->add_option("-o,--output", args->prefix,
-                    "Write PREFIX-ray.png, -hybrid.png, -diff.png and -ids.png; with --a/--b "
-                    "PREFIX-a.png, -b.png, -heat.png and -causes.png (PREFIX.exr: also "
-                    "PREFIX-heat.exr)");
-    cmd->add_option("--json", args->json, "Also write the measurements as JSON here");
-    args->a_option = cmd->add_option(
-        "--a", args->a,
-        "Side A's render flags, quoted (\"--max-depth 2 --accel grid\"), or exact (ray traced in "
-        "double, depth 64, no cut-off); unset flags are compare's own (docs/DIFFERENCES.md)");
-    args->b_option = cmd->add_option("--b", args->b, "Side B's render flags, as --a");
-    cmd->add_flag("--exr", args->exr,
-                  "With --a/--b: also write the float error |A - B| as PREFIX-heat.exr");
+    args->add_to(*cmd);
     return {cmd, [args] { args->sides() ? check_compare_sides(*args) : (void)prepare(*args); },
             [args] { return guarded([&] { return run_compare(*args); }); }};
 }

@@ -230,22 +230,33 @@ void check_compare_sides(const CompareArgs& args) {
     prepare_sides(args);
 }
 
-int run_compare_sides(const CompareArgs& args) {
+ComparedSides compare_sides(const CompareArgs& args, const std::atomic<bool>* cancel,
+                            std::FILE* progress) {
     Job job = prepare_sides(args);
+    job.a.frame.cancel = job.b.frame.cancel = cancel;
+    if (progress) std::fprintf(progress, "glint: rendering A (%s)\n", describe_side(job.a).c_str());
+    auto a = std::make_unique<const RenderedSide>(std::move(job.a));
+    if (cancel && *cancel) throw Cancelled();
+    if (progress) std::fprintf(progress, "glint: rendering B (%s)\n", describe_side(job.b).c_str());
+    auto b = std::make_unique<const RenderedSide>(std::move(job.b));
+    if (cancel && *cancel) throw Cancelled();
+    const FrameDifference d = difference(*a, *b, outputs_of(args).exr);
+    const ImageDifference diff = compare_results(a->frame().result, b->frame().result);
+    std::string json = sides_json(args, *a, *b, d, diff).dump(2) + "\n";
+    return {std::move(a), std::move(b), d, diff, std::move(json)};
+}
+
+int run_compare_sides(const CompareArgs& args) {
+    const ComparedSides c = compare_sides(args, nullptr, stderr);
     const Outputs out = outputs_of(args);
-    std::fprintf(stderr, "glint: rendering A (%s)\n", describe_side(job.a).c_str());
-    const RenderedSide a(std::move(job.a));
-    std::fprintf(stderr, "glint: rendering B (%s)\n", describe_side(job.b).c_str());
-    const RenderedSide b(std::move(job.b));
-    const FrameDifference d = difference(a, b, out.exr);
-    const ImageDifference diff = compare_results(a.frame().result, b.frame().result);
-    print_sides(args, a, b, d, diff);
+    const RenderedSide &a = *c.a, &b = *c.b;
+    print_sides(args, a, b, c.difference, c.image);
     if (!out.prefix.empty()) {
         const Image image_a = a.frame().result.bytes();
         write_png(out.prefix + "-a.png", image_a);
         write_png(out.prefix + "-b.png", b.frame().result.bytes());
-        write_png(out.prefix + "-heat.png", heat_map(d));
-        write_png(out.prefix + "-causes.png", cause_map(d, image_a));
+        write_png(out.prefix + "-heat.png", heat_map(c.difference));
+        write_png(out.prefix + "-causes.png", cause_map(c.difference, image_a));
         std::string wrote = out.prefix + "-{a,b,heat,causes}.png";
         if (out.exr) {
             const FloatImage error = error_image(a.frame().result, b.frame().result);
@@ -254,8 +265,7 @@ int run_compare_sides(const CompareArgs& args) {
         }
         std::printf("\nwrote %s\n", wrote.c_str());
     }
-    if (!args.json.empty())
-        write_file_atomically(args.json, sides_json(args, a, b, d, diff).dump(2) + "\n");
+    if (!args.json.empty()) write_file_atomically(args.json, c.json);
     return 0;
 }
 

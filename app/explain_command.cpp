@@ -1,6 +1,7 @@
 // `glint explain [SCENE] X Y`: one pixel's ray tree, in the lecture's notation or as JSON
 // (frame/explain.h, docs/EXPLAIN.md).
 #include "app/compare.h"
+#include "app/explain.h"
 
 #include "frame/explain.h"
 #include "frame/explain_against.h"
@@ -13,16 +14,6 @@
 
 namespace glint {
 namespace {
-
-struct ExplainArgs {
-    SceneOptions scene;
-    FrameOptions frame;
-    std::vector<std::string> pixel; // X Y (prepare() sorts out [SCENE] X Y)
-    std::string sample;
-    std::string json;
-    std::string against; // --against: the other side's flags
-    CLI::Option* against_option = nullptr;
-};
 
 struct ExplainJob {
     Scene scene;
@@ -95,7 +86,7 @@ ExplainJob prepare(ExplainArgs& args) {
 }
 
 // --against: the pixel under explain's own settings (A) and the other side's (B).
-int run_against(const ExplainArgs& args, const ExplainJob& job) {
+Explained explain_both(const ExplainArgs& args, const ExplainJob& job) {
     Side own;
     own.label = "(explain's own settings)";
     own.scene = job.scene, own.accel = args.scene.accel_kind(), own.frame = args.frame.settings();
@@ -105,17 +96,48 @@ int run_against(const ExplainArgs& args, const ExplainJob& job) {
     const PixelAgainst p =
         explain_against(a, b, job.x, job.y, job.sample_given ? job.b * n + job.a : -1);
     const std::string scene = args.scene.scene_path().string();
-    std::fputs(against_text(a, b, p, scene).c_str(), stdout);
+    return {against_text(a, b, p, scene), against_json(a, b, p, scene)};
+}
+
+int run_explain(ExplainArgs& args) {
+    const Explained e = explain(args);
+    std::fputs(e.text.c_str(), stdout);
     if (!args.json.empty()) {
-        write_file_atomically(args.json, against_json(a, b, p, scene));
+        write_file_atomically(args.json, e.json);
         std::printf("glint: wrote %s\n", args.json.c_str());
     }
     return 0;
 }
 
-int run_explain(ExplainArgs& args) {
+} // namespace
+
+void ExplainArgs::add_to(CLI::App& cmd) {
+    scene.add_to(cmd);
+    cmd.add_option("pixel", pixel, "X Y: the pixel's column and row (0, 0: top left)")
+        ->expected(1, 2);
+    frame.add_to(cmd, true);
+    cmd.add_option("--sample", sample,
+                   "A,B: which sample of the pixel's NxN grid to explain; default the centre "
+                   "one (N/2, N/2)");
+    cmd.add_option("--json", json, "Also write the explanation as JSON (docs/EXPLAIN.md)");
+    against_option = cmd.add_option(
+        "--against", against,
+        "Another setting's flags, quoted (\"--max-depth 2\"), or exact: the pixel's two ray trees "
+        "side by side, where they part and why (docs/EXPLAIN.md)");
+    // render's outputs: explain writes none of them.
+    refuse_option(cmd, "-o,--output",
+                  "explain writes no image: it prints the pixel's ray tree (--json writes it as "
+                  "JSON); `glint render -o` writes the image");
+    refuse_option(cmd, "--stats",
+                  "render's: explain prints the pixel's rays itself (and --json writes them)");
+    refuse_option(cmd, "--aov",
+                  "render's (an EXR's channels): explain prints the pixel's primary hit itself");
+    refuse_option(cmd, "--aa-map", "render's: explain says whether its pixel took the sample grid");
+}
+
+Explained explain(ExplainArgs& args) {
     const ExplainJob job = prepare(args);
-    if (job.against) return run_against(args, job);
+    if (job.against) return explain_both(args, job);
     const World world(job.scene, args.scene.accel_kind());
     const PixelExplanation e =
         explain_frame_pixel(world, args.frame.settings(), job.x, job.y, job.a, job.b);
@@ -125,42 +147,17 @@ int run_explain(ExplainArgs& args) {
                        std::to_string(job.scene.camera.height) + "), " + settings;
     if (const std::string aa = describe_antialiasing(job.scene.render); !aa.empty())
         what += ", " + aa;
-    std::fputs(explanation_text(job.scene, world, e, what).c_str(), stdout);
-    if (!args.json.empty()) {
-        write_file_atomically(args.json, explanation_json(job.scene, world, e, scene, settings));
-        std::printf("glint: wrote %s\n", args.json.c_str());
-    }
-    return 0;
+    return {explanation_text(job.scene, world, e, what),
+            explanation_json(job.scene, world, e, scene, settings)};
 }
 
-} // namespace
+namespace {} // namespace
 
 Command add_explain_command(CLI::App& app) {
     auto args = std::make_shared<ExplainArgs>();
     CLI::App* cmd = app.add_subcommand(
         "explain", "Explain one pixel: its ray tree with every term, as the render computes it");
-    args->scene.add_to(*cmd);
-    cmd->add_option("pixel", args->pixel, "X Y: the pixel's column and row (0, 0: top left)")
-        ->expected(1, 2);
-    args->frame.add_to(*cmd, true);
-    cmd->add_option("--sample", args->sample,
-                    "A,B: which sample of the pixel's NxN grid to explain; default the centre "
-                    "one (N/2, N/2)");
-    cmd->add_option("--json", args->json, "Also write the explanation as JSON (docs/EXPLAIN.md)");
-    args->against_option = cmd->add_option(
-        "--against", args->against,
-        "Another setting's flags, quoted (\"--max-depth 2\"), or exact: the pixel's two ray trees "
-        "side by side, where they part and why (docs/EXPLAIN.md)");
-    // render's outputs: explain writes none of them.
-    refuse_option(*cmd, "-o,--output",
-                  "explain writes no image: it prints the pixel's ray tree (--json writes it as "
-                  "JSON); `glint render -o` writes the image");
-    refuse_option(*cmd, "--stats",
-                  "render's: explain prints the pixel's rays itself (and --json writes them)");
-    refuse_option(*cmd, "--aov",
-                  "render's (an EXR's channels): explain prints the pixel's primary hit itself");
-    refuse_option(*cmd, "--aa-map",
-                  "render's: explain says whether its pixel took the sample grid");
+    args->add_to(*cmd);
     return {cmd, [args] { prepare(*args); },
             [args] { return guarded([&] { return run_explain(*args); }); }};
 }

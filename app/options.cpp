@@ -108,7 +108,7 @@ Scene SceneOptions::load() const {
     if (time_option->count() || animation_option->count() || animate) model.time = time;
     model.animation = animation;
     model.srgb = srgb;
-    Scene loaded = load_scene_with_notes(scene_path(), model);
+    Scene loaded = preloaded ? *preloaded : load_scene_with_notes(scene_path(), model);
     render.apply(loaded);
     return loaded;
 }
@@ -176,6 +176,33 @@ void refuse_option(CLI::App& cmd, const std::string& name, const std::string& wh
                   name, [refuse](const std::vector<std::string>&) { refuse(); })
             : cmd.add_flag_callback(name, refuse);
     option->group(""); // not in --help: the command does not take it
+}
+
+void add_aov_option(CLI::App& cmd, std::vector<std::string>& aovs) {
+    cmd.add_option("--aov", aovs,
+                   "EXR only: add channels for each pixel centre's primary hit, comma-separated: "
+                   "depth (Z), normal (N.X, N.Y, N.Z), id, cutoff")
+        ->delimiter(',');
+}
+
+std::vector<Aov> parse_aovs(const std::vector<std::string>& names) {
+    std::vector<Aov> aovs;
+    for (const std::string& name : names) {
+        const std::optional<Aov> aov = from_name<Aov>(name);
+        if (!aov) throw UsageError("--aov " + name + ": not an AOV (depth, normal, id, cutoff)");
+        if (std::find(aovs.begin(), aovs.end(), *aov) == aovs.end()) aovs.push_back(*aov);
+    }
+    return aovs;
+}
+
+void add_colour_option(CLI::App& cmd, std::string& colour) {
+    cmd.add_option("--colour", colour,
+                   "linear: texture bytes are colours and the PNG holds round(255·c) (the "
+                   "default, DESIGN §11); srgb: a glTF's base colour and emissive textures are "
+                   "decoded from sRGB, shading is linear, and the PNG is sRGB-encoded (EXR stays "
+                   "linear)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"linear", "srgb"}));
 }
 
 std::pair<int, int> parse_size(const std::string& text, const std::string& flag) {

@@ -5,6 +5,7 @@
 #include "app/commands.h"
 #include "frame/frame.h"
 
+#include "io/exr.h"
 #include "io/model_scene.h"
 
 #include <cstdint>
@@ -18,6 +19,13 @@ namespace glint {
 class UsageError : public std::runtime_error {
   public:
     using std::runtime_error::runtime_error;
+};
+
+// A frame stopped from outside before its last tile (FrameSettings::cancel): the Python module's
+// Ctrl-C, raised there as KeyboardInterrupt.
+class Cancelled : public std::runtime_error {
+  public:
+    Cancelled() : std::runtime_error("cancelled") {}
 };
 
 // The scene's render settings a command line may override (and each side of `glint compare
@@ -58,6 +66,10 @@ struct SceneOptions {
     bool animate = false;
     bool srgb = false; // `glint render --colour srgb`: ModelOptions::srgb
     RenderOptions render;
+    // The scene read already (the Python module's glint.load): load() starts from a copy of it
+    // instead of reading the file. The caller leaves it null where the options change what is
+    // read (app/library.cpp).
+    std::shared_ptr<const Scene> preloaded;
 
     void add_to(CLI::App& cmd);
     std::filesystem::path scene_path() const; // the given scene, or scenes/default.json
@@ -88,6 +100,13 @@ struct FrameOptions {
 // into a positional argument with a vaguer message. `takes_value`: an option, else a flag.
 void refuse_option(CLI::App& cmd, const std::string& name, const std::string& why,
                    bool takes_value = true);
+
+// render's --aov: the channels of each pixel centre's primary hit (the Python module's `aovs`).
+void add_aov_option(CLI::App& cmd, std::vector<std::string>& aovs);
+// The AOVs named, in the order given, each once; UsageError naming one that is not an AOV.
+std::vector<Aov> parse_aovs(const std::vector<std::string>& names);
+// render's --colour: linear (DESIGN §11's bytes) or srgb.
+void add_colour_option(CLI::App& cmd, std::string& colour);
 
 // WIDTHxHEIGHT, each side 1 to kMaxImageSide; UsageError naming `flag` otherwise.
 std::pair<int, int> parse_size(const std::string& text, const std::string& flag);

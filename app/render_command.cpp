@@ -1,8 +1,8 @@
 // `glint render`: load, prepare, draw the item buffer (hybrid), trace, write.
 #include "app/distributed.h"
 #include "app/options.h"
-#include "app/phase_json.h"
 #include "app/progress.h"
+#include "app/render_stats.h"
 #include "frame/gl_pass.h"
 #include "frame/record_json.h"
 
@@ -134,16 +134,10 @@ RenderJob prepare(const RenderArgs& args) {
     if (format != ".png" && format != ".exr")
         throw UsageError("-o " + job.output.string() +
                          ": glint writes PNG (.png) and OpenEXR (.exr) files");
-    for (const std::string& name : args.aovs) {
-        const std::optional<Aov> aov = from_name<Aov>(name);
-        if (!aov)
-            throw UsageError("--aov " + name + ": not an AOV (depth, normal, id, cutoff)");
-        if (format != ".exr")
-            throw UsageError("--aov " + name + ": AOVs are channels of an OpenEXR file; give -o "
-                             "FILE.exr");
-        if (std::find(job.aovs.begin(), job.aovs.end(), *aov) == job.aovs.end())
-            job.aovs.push_back(*aov);
-    }
+    job.aovs = parse_aovs(args.aovs);
+    if (!job.aovs.empty() && format != ".exr")
+        throw UsageError("--aov " + args.aovs.front() +
+                         ": AOVs are channels of an OpenEXR file; give -o FILE.exr");
     if (!args.aa_map.empty() && extension_of(args.aa_map) != ".png")
         throw UsageError("--aa-map " + args.aa_map + ": glint writes PNG files (.png)");
     if (rank() == 0) {
@@ -165,93 +159,13 @@ RenderJob prepare(const RenderArgs& args) {
     return job;
 }
 
-// What one render measured: the report's and --stats' figures.
-struct RenderReport {
-    const RenderArgs& args;
-    const RenderJob& job;
-    const World& world;
-    const Frame& frame;
-    CutoffBound cutoff;
-    int threads;
-    double load_seconds, prepare_seconds, write_seconds, total_seconds;
-};
-
-// The --stats file: settings, seconds per phase, rays, cut-off, structure, hybrid figures.
-nlohmann::ordered_json stats_json(const RenderReport& r) {
-    const Scene& scene = r.job.scene;
-    const RayCounts& rays = r.frame.result.rays;
-    const PhaseTimes& t = r.frame.times;
-    nlohmann::ordered_json stats = {
-        {"scene", r.job.scene_path.string()},
-        {"output", r.job.output.string()},
-        {"width", scene.camera.width},
-        {"height", scene.camera.height},
-        {"mode", r.args.frame.mode},
-        {"threads", r.threads},
-        {"kernel", name_of(active_kernel())},
-        {"max_depth", scene.render.max_depth},
-        {"min_reflectivity", scene.render.min_reflectivity},
-        {"samples", scene.render.samples},
-        {"antialias", name_of(scene.render.antialias)},
-        {"aa_threshold", scene.render.aa_threshold},
-        {"packet_levels", scene.render.packet_levels},
-        {"seconds", {{"load", r.load_seconds}, {"prepare", r.prepare_seconds}}},
-        {"rays", record_json(rays)},
-        {"cutoff",
-         {{"bound_max_255", r.cutoff.max},
-          {"pixels_over_1_255", r.cutoff.pixels_over_one},
-          {"largest_omitted_weight", r.cutoff.largest_omitted_weight}}},
-    };
-    nlohmann::ordered_json& seconds = stats["seconds"];
-    seconds.update(phase_seconds_json(t));
-    seconds["frame"] = t.total(); // from the World to the last pixel, wall time
-    seconds["write"] = r.write_seconds;
-    seconds["total"] = r.total_seconds;
-    // Per ray: over every query the tracer made (primary, shadow, reflected and transmitted
-    // rays, and in hybrid mode the resolve's exact-interval queries, counted with the primary
-    // rays).
-    const TraversalCounters counts = r.world.traversal_counts();
-    const double queries = static_cast<double>(rays.total());
-    const Accelerator& accel = r.world.accelerator();
-    stats["accel"] = {
-        {"kind", name_of(accel.kind())},
-        {"build_seconds", r.world.build_seconds()},
-        {"memory_bytes", accel.memory_bytes()},
-        {"nodes", accel.node_count()},
-        {"nodes_visited_per_ray", static_cast<double>(counts.nodes) / queries},
-        {"primitives_tested_per_ray", static_cast<double>(counts.primitives) / queries}};
-    if (!r.frame.result.refined.empty())
-        stats["refined_pixels"] = std::count(r.frame.result.refined.begin(),
-                                             r.frame.result.refined.end(), std::uint8_t{1});
-    if (r.args.frame.settings().mode == Mode::hybrid) {
-        const PrimaryStats& p = r.frame.primary_stats;
-        const std::vector<float>& deviations = r.frame.deviations;
-        stats["hybrid"] = {
-            {"gl", r.args.frame.gl},
-            {"gl_renderer", r.frame.gl_renderer},
-            {"raster", r.args.frame.raster},
-            {"tessellation", r.args.frame.tessellation},
-            {"resolve", r.args.frame.resolve}};
-        // The resolve's counters under their field names (trace/frame_records.h), as compare's
-        // --json writes them.
-        stats["hybrid"].update(record_json(p));
-        stats["hybrid"].update({{"proxy_objects", r.frame.proxies},
-                                {"tessellated_objects", r.frame.tessellated},
-                                {"max_deviation", deviations.empty() ? 0.0f
-                                                                     : *std::max_element(
-                                                                           deviations.begin(),
-                                                                           deviations.end())}});
-    }
-    return stats;
-}
-
 // The lines every render prints: where it wrote and how long it took, the rays, the cut-off.
 void print_report(const RenderReport& r) {
-    const Scene& scene = r.job.scene;
+    const Scene& scene = r.scene;
     const RayCounts& rays = r.frame.result.rays;
     std::printf("glint: wrote %s (%dx%d, %s, %s, %d threads) in %.3f s (render %.3f s)\n",
-                r.job.output.c_str(), scene.camera.width, scene.camera.height,
-                r.args.frame.describe().c_str(),
+                r.output.c_str(), scene.camera.width, scene.camera.height,
+                r.frame_options.describe().c_str(),
                 std::string(name_of(r.world.accelerator().kind())).c_str(), r.threads,
                 r.total_seconds, r.frame.times.total());
     if (const std::string aa = describe_antialiasing(scene.render); !aa.empty()) {
@@ -460,9 +374,10 @@ int run_render(const RenderArgs& args) {
     write_image(job, frame.result);
     const double write_seconds = phase.seconds();
     const double total_seconds = total.seconds();
-    const RenderReport report{
-        args,    job,          world,           frame,         cutoff_bound(scene, frame.result),
-        threads, load_seconds, prepare_seconds, write_seconds, total_seconds};
+    const RenderReport report{job.scene_path, job.output,  scene,           args.frame,
+                              world,          frame,       cutoff_bound(scene, frame.result),
+                              threads,        load_seconds, prepare_seconds, write_seconds,
+                              total_seconds};
     if (!args.stats.empty()) write_file_atomically(args.stats, stats_json(report).dump(2) + "\n");
     if (!args.aa_map.empty()) write_png(args.aa_map, refinement_map(frame.result));
     print_report(report);
@@ -479,10 +394,7 @@ Command add_render_command(CLI::App& app) {
     cmd->add_option("-o,--output", args->output,
                     "Output image: .png (8-bit, clamped) or .exr (linear float, unclamped); "
                     "default out/<scene name>.png");
-    cmd->add_option("--aov", args->aovs,
-                    "EXR only: add channels for each pixel centre's primary hit, comma-separated: "
-                    "depth (Z), normal (N.X, N.Y, N.Z), id, cutoff")
-        ->delimiter(',');
+    add_aov_option(*cmd, args->aovs);
     args->frame.add_to(*cmd, true);
     args->frames_option =
         cmd->add_option("--frames", args->frames,
@@ -493,13 +405,7 @@ Command add_render_command(CLI::App& app) {
     cmd->add_flag("--orbit", args->orbit,
                   "With --frames N: turn the camera 360° about the +Y axis through its look-at "
                   "point (a framed model's centre) over the N frames");
-    cmd->add_option("--colour", args->colour,
-                    "linear: texture bytes are colours and the PNG holds round(255·c) (the "
-                    "default, DESIGN §11); srgb: a glTF's base colour and emissive textures are "
-                    "decoded from sRGB, shading is linear, and the PNG is sRGB-encoded (EXR stays "
-                    "linear)")
-        ->capture_default_str()
-        ->check(CLI::IsMember({"linear", "srgb"}));
+    add_colour_option(*cmd, args->colour);
     cmd->add_option("--stats", args->stats,
                     "Also write timings per phase and ray counts as JSON here");
     cmd->add_option("--aa-map", args->aa_map,
