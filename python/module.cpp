@@ -204,6 +204,23 @@ void require(const PyFrame& f, Aov aov) {
     }
 }
 
+// A Frame property that is a view of one of its layers: `data` finds the layer, `channels` a
+// pixel (1: H×W), `aov` the layer render(aovs=[…]) must have asked for (none: always there).
+template <class Data>
+void add_layer(py::class_<PyFrame, std::shared_ptr<PyFrame>>& frame, const char* name,
+               std::optional<Aov> aov, py::ssize_t channels, Data data, const char* doc) {
+    frame.def_property_readonly(
+        name,
+        [aov, channels, data](const py::object& self) {
+            const PyFrame& f = self.cast<const PyFrame&>();
+            if (aov) require(f, *aov);
+            std::vector<py::ssize_t> shape{f.height(), f.width()};
+            if (channels > 1) shape.push_back(channels);
+            return view(self, data(f), std::move(shape));
+        },
+        doc);
+}
+
 struct PyScene {
     LoadedScene loaded;
 };
@@ -293,56 +310,32 @@ PYBIND11_MODULE(glint, m) {
     py::class_<PyFrame, std::shared_ptr<PyFrame>> frame(
         m, "Frame", "One render: arrays share its memory (read-only) and live as long as it");
     frame.def_property_readonly("width", &PyFrame::width)
-        .def_property_readonly("height", &PyFrame::height)
-        .def_property_readonly(
-            "rgb",
-            [](const py::object& self) {
-                const PyFrame& f = self.cast<const PyFrame&>();
-                return view(self, f.rendered.frame.result.radiance.rgb.data(),
-                            {f.height(), f.width(), 3});
-            },
-            "float32 H×W×3: linear radiance, unclamped (the EXR's R, G, B)")
-        .def_property_readonly(
-            "image",
-            [](const py::object& self) {
-                const PyFrame& f = self.cast<const PyFrame&>();
-                return view(self, f.rendered.image.rgb.data(), {f.height(), f.width(), 3});
-            },
-            "uint8 H×W×3: the PNG's bytes")
-        .def_property_readonly(
-            "depth",
-            [](const py::object& self) {
-                const PyFrame& f = self.cast<const PyFrame&>();
-                require(f, Aov::depth);
-                return view(self, f.rendered.frame.result.aovs.depth.data(),
-                            {f.height(), f.width()});
-            },
-            "float32 H×W: the pixel centre's primary hit distance, inf for none (aovs=['depth'])")
-        .def_property_readonly(
-            "normal",
-            [](const py::object& self) {
-                const PyFrame& f = self.cast<const PyFrame&>();
-                require(f, Aov::normal);
-                return view(self, f.rendered.frame.result.aovs.normal.data(),
-                            {f.height(), f.width(), 3});
-            },
-            "float32 H×W×3: the unit shading normal facing the eye (aovs=['normal'])")
-        .def_property_readonly(
-            "id",
-            [](const py::object& self) {
-                const PyFrame& f = self.cast<const PyFrame&>();
-                require(f, Aov::id);
-                return view(self, f.rendered.frame.result.aovs.id.data(), {f.height(), f.width()});
-            },
-            "uint32 H×W: object index + 1, 0 for none (aovs=['id'])")
-        .def_property_readonly(
-            "cutoff",
-            [](const py::object& self) {
-                const PyFrame& f = self.cast<const PyFrame&>();
-                require(f, Aov::cutoff);
-                return view(self, f.rendered.cutoff.data(), {f.height(), f.width()});
-            },
-            "float32 H×W: the radiance the cut-off may have left out, a bound (aovs=['cutoff'])")
+        .def_property_readonly("height", &PyFrame::height);
+    const auto radiance = [](const PyFrame& f) {
+        return f.rendered.frame.result.radiance.rgb.data();
+    };
+    const auto bytes = [](const PyFrame& f) { return f.rendered.image.rgb.data(); };
+    const auto aovs = [](const PyFrame& f) -> const PrimaryAovs& {
+        return f.rendered.frame.result.aovs;
+    };
+    add_layer(frame, "rgb", std::nullopt, 3, radiance,
+              "float32 H×W×3: linear radiance, unclamped (the EXR's R, G, B)");
+    add_layer(frame, "image", std::nullopt, 3, bytes, "uint8 H×W×3: the PNG's bytes");
+    add_layer(
+        frame, "depth", Aov::depth, 1, [aovs](const PyFrame& f) { return aovs(f).depth.data(); },
+        "float32 H×W: the pixel centre's primary hit distance, inf for none "
+        "(aovs=['depth'])");
+    add_layer(
+        frame, "normal", Aov::normal, 3, [aovs](const PyFrame& f) { return aovs(f).normal.data(); },
+        "float32 H×W×3: the unit shading normal facing the eye (aovs=['normal'])");
+    add_layer(
+        frame, "id", Aov::id, 1, [aovs](const PyFrame& f) { return aovs(f).id.data(); },
+        "uint32 H×W: object index + 1, 0 for none (aovs=['id'])");
+    add_layer(
+        frame, "cutoff", Aov::cutoff, 1, [](const PyFrame& f) { return f.rendered.cutoff.data(); },
+        "float32 H×W: the radiance the cut-off may have left out, a bound "
+        "(aovs=['cutoff'])");
+    frame
         .def_property_readonly(
             "stats",
             [](const PyFrame& f) -> py::object {
