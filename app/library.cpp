@@ -218,14 +218,15 @@ RenderedFrame render_by_keywords(const LoadedScene& loaded, const Keywords& give
     RenderedFrame out;
     out.aovs = parser.checked([&] { return parse_aovs(aov_names); });
     FrameSettings settings = parser.checked([&] { return frame_options.settings(); });
-    out.scene = parser.checked([&] { return options.load(); });
-    parser.checked([&] { check_frame_memory(out.scene, settings.mode, 1); });
+    const Scene scene = parser.checked([&] { return options.load(); });
+    parser.checked([&] { check_frame_memory(scene, settings.mode, 1); });
+    out.width = scene.camera.width, out.height = scene.camera.height;
     const double load_seconds = phase.lap();
 
     // As `glint render` does: the GL pass makes its context beside the World's preparation.
     std::optional<GlPass> gl;
-    if (needs_gl(settings, out.scene.objects.size())) gl.emplace(settings);
-    World world(out.scene, options.accel_kind());
+    if (needs_gl(settings, scene.objects.size())) gl.emplace(settings);
+    World world(scene, options.accel_kind());
     world.count_traversals(true); // the stats' traversal figures, as --stats counts them
     const double prepare_seconds = phase.lap();
     settings.aovs =
@@ -236,16 +237,16 @@ RenderedFrame render_by_keywords(const LoadedScene& loaded, const Keywords& give
 
     const RenderResult& result = out.frame.result;
     out.image = options.srgb ? to_srgb_bytes(result.display()) : result.bytes();
-    if (wants(out.aovs, Aov::cutoff)) out.cutoff = cutoff_radiance(out.scene, result);
+    if (wants(out.aovs, Aov::cutoff)) out.cutoff = cutoff_radiance(scene, result);
     const int threads =
         frame_options.threads > 0 ? frame_options.threads : tbb::this_task_arena::max_concurrency();
     const RenderReport report{loaded.path,
                               {},
-                              out.scene,
+                              scene,
                               frame_options,
                               world,
                               out.frame,
-                              cutoff_bound(out.scene, result),
+                              cutoff_bound(scene, result),
                               threads,
                               load_seconds,
                               prepare_seconds,
@@ -282,7 +283,7 @@ ComparedSides compare_by_keywords(const LoadedScene& loaded, const std::string& 
 
 RenderedFrame side_frame(const RenderedSide& side) {
     RenderedFrame out;
-    out.scene = side.side().scene;
+    out.width = side.side().scene.camera.width, out.height = side.side().scene.camera.height;
     out.frame.result = side.frame().result;
     out.frame.times = side.frame().times;
     out.image = out.frame.result.bytes();

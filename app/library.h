@@ -57,7 +57,7 @@ LoadedScene load_by_keywords(const std::filesystem::path& path, const Keywords& 
 
 // A rendered frame and what the Python module's Frame reads of it.
 struct RenderedFrame {
-    Scene scene; // as rendered: its size, its settings
+    int width = 0, height = 0; // as rendered
     Frame frame;
     Image image;               // the PNG's bytes (through the sRGB curve with colour="srgb")
     std::vector<Aov> aovs;     // asked for
@@ -80,7 +80,7 @@ ComparedSides compare_by_keywords(const LoadedScene& loaded, const std::string& 
                                   const std::string& b, const Keywords& given,
                                   const std::atomic<bool>* cancel);
 
-// A side of a comparison as a frame: its scene, its frame's result (copied), its PNG bytes.
+// A side of a comparison as a frame: its size, its frame's result (copied), its PNG bytes.
 RenderedFrame side_frame(const RenderedSide& side);
 
 } // namespace glint

@@ -189,8 +189,8 @@ py::object parsed_json(const std::string& text) {
 // A Python Frame: one render's result, shared with the arrays made of it.
 struct PyFrame {
     RenderedFrame rendered;
-    int width() const { return rendered.scene.camera.width; }
-    int height() const { return rendered.scene.camera.height; }
+    int width() const { return rendered.width; }
+    int height() const { return rendered.height; }
     bool has(Aov aov) const {
         return std::find(rendered.aovs.begin(), rendered.aovs.end(), aov) != rendered.aovs.end();
     }
@@ -225,8 +225,9 @@ struct PyScene {
     LoadedScene loaded;
 };
 
-// glint.SceneError: bad input, with the file and the place the message names.
-py::object scene_error_type;
+// glint.SceneError: bad input, with the file and the place the message names. Kept for the
+// process's life (a py::object here would be released after the interpreter has gone).
+PyObject* scene_error_type = nullptr;
 
 // The file, the place (a JSON pointer, "line N" or "line N, column M") and what is wrong, from
 // a SceneError's message ("file: /pointer: what", "file:LINE: what", "file:LINE:COL: what").
@@ -247,11 +248,11 @@ void translate(std::exception_ptr error) {
         std::rethrow_exception(error);
     } catch (const SceneError& e) {
         const auto [file, place, what] = scene_error_parts(e.what());
-        py::object instance = scene_error_type(e.what());
+        py::object instance = py::reinterpret_borrow<py::object>(scene_error_type)(e.what());
         instance.attr("file") = file;
         instance.attr("place") = place.empty() ? py::object(py::none()) : py::str(place);
         instance.attr("detail") = what;
-        PyErr_SetObject(scene_error_type.ptr(), instance.ptr());
+        PyErr_SetObject(scene_error_type, instance.ptr());
     } catch (const UsageError& e) {
         PyErr_SetString(PyExc_ValueError, e.what());
     } catch (const GlError& e) {
@@ -299,12 +300,13 @@ PYBIND11_MODULE(glint, m) {
     using namespace glint;
     m.doc() = "glint: a hybrid item-buffer / ray-tracing renderer, in NumPy arrays "
               "(docs/PYTHON.md)";
-    scene_error_type = py::reinterpret_borrow<py::object>(
+    scene_error_type =
         PyErr_NewExceptionWithDoc("glint.SceneError",
                                   "Bad input in a scene file: .file, .place (a JSON pointer or "
                                   "'line N'; None where the message names none) and .detail",
-                                  PyExc_Exception, nullptr));
-    m.attr("SceneError") = scene_error_type;
+                                  PyExc_Exception, nullptr);
+    if (!scene_error_type) throw py::error_already_set();
+    m.attr("SceneError") = py::reinterpret_borrow<py::object>(scene_error_type);
     py::register_exception_translator(&translate);
 
     py::class_<PyFrame, std::shared_ptr<PyFrame>> frame(
