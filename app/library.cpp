@@ -40,14 +40,6 @@ bool excluded(Call call, const std::string& keyword) {
     return true;
 }
 
-// A keyword's flag: `max_depth` → --max-depth; `aovs` → --aov (Python's plural for a list).
-std::string flag_of(const std::string& keyword) {
-    if (keyword == "aovs") return "--aov";
-    std::string flag = "--" + keyword;
-    std::replace(flag.begin(), flag.end(), '_', '-');
-    return flag;
-}
-
 std::string keyword_of(const std::string& flag) {
     if (flag == "--aov") return "aovs";
     std::string keyword = flag.substr(2);
@@ -158,6 +150,13 @@ void add_render_options(CLI::App& cmd, SceneOptions& scene, FrameOptions& frame,
 }
 
 } // namespace
+
+std::string flag_of(const std::string& keyword) {
+    if (keyword == "aovs") return "--aov";
+    std::string flag = "--" + keyword;
+    std::replace(flag.begin(), flag.end(), '_', '-');
+    return flag;
+}
 
 std::vector<std::string> keywords_of(Call call) {
     Parser parser(call);

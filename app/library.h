@@ -38,6 +38,9 @@ struct Keyword {
 };
 using Keywords = std::vector<Keyword>;
 
+// A keyword's flag: `max_depth` is --max-depth; `aovs` is --aov (Python's plural for a list).
+std::string flag_of(const std::string& keyword);
+
 // The calls, each with the settings its command takes.
 enum class Call { load, render, explain, compare };
 

@@ -32,9 +32,14 @@ namespace {
 // `size` (w, h) as WxH, `sample` (a, b) as A,B, and a list (aovs) as one value each.
 std::vector<std::string> spelled(const std::string& name, py::handle value) {
     if (py::isinstance<py::bool_>(value)) return {value.cast<bool>() ? "true" : "false"};
-    if (py::isinstance<py::int_>(value)) return {py::str(value).cast<std::string>()};
-    if (py::isinstance<py::float_>(value)) return {py::repr(value).cast<std::string>()};
     if (py::isinstance<py::str>(value)) return {value.cast<std::string>()};
+    // Integers and floats, NumPy's scalars among them (np.int64 has __index__, np.float32
+    // __float__).
+    if (PyIndex_Check(value.ptr()))
+        return {py::str(py::int_(py::reinterpret_borrow<py::object>(value))).cast<std::string>()};
+    if (py::isinstance<py::float_>(value) || py::hasattr(value, "__float__"))
+        return {
+            py::repr(py::float_(py::reinterpret_borrow<py::object>(value))).cast<std::string>()};
     if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
         const py::sequence items = py::reinterpret_borrow<py::sequence>(value);
         const char* joint = name == "size" ? "x" : name == "sample" ? "," : nullptr;
@@ -82,8 +87,7 @@ std::string side_flags(const char* which, py::handle side) {
             exact = value.cast<bool>();
             continue;
         }
-        std::string flag = "--" + name;
-        std::replace(flag.begin(), flag.end(), '_', '-');
+        const std::string flag = flag_of(name);
         for (const std::string& v : spelled(name, value)) {
             if (v != "false") add(flag);
             if (v != "true" && v != "false") add(v);

@@ -112,3 +112,13 @@ def test_scene_errors_carry_the_file_and_the_place(glint_module, tmp_path):
 def test_bad_memory_or_grid_is_a_value_error(glint_module):
     with pytest.raises(ValueError, match="beyond the largest GL draws"):
         glint_module.load("scenes/default.json").render(size=(16000, 100), samples=4)
+
+
+def test_numpy_scalars_are_numbers(glint_module):
+    import numpy as np
+    scene = glint_module.load("scenes/default.json")
+    frame = scene.render(mode="ray", size=(np.int64(8), np.int32(6)), max_depth=np.int64(2),
+                         min_reflectivity=np.float32(0.25))
+    stats = frame.stats
+    assert (stats["width"], stats["height"], stats["max_depth"]) == (8, 6, 2)
+    assert stats["min_reflectivity"] == 0.25
