@@ -281,7 +281,7 @@ py::dict comparison(ComparedSides c) {
     py::list names;
     for (std::size_t k = 0; k < kCauses; ++k)
         names.append(std::string(name_of(static_cast<Cause>(k))));
-    const Image a_bytes = c.a->frame().result.bytes();
+    const auto a = std::make_shared<PyFrame>(PyFrame{side_frame(*c.a)}); // its bytes made once
     out["error"] = owned(std::vector<float>(d.error), {h, w});
     out["causes"] = owned(std::move(causes), {h, w});
     out["cause_names"] = names;
@@ -291,8 +291,8 @@ py::dict comparison(ComparedSides c) {
         return owned(std::move(image.rgb), {rows, columns, 3});
     };
     out["heat_map"] = picture(heat_map(d));
-    out["cause_map"] = picture(cause_map(d, a_bytes));
-    out["a"] = py::cast(std::make_shared<PyFrame>(PyFrame{side_frame(*c.a)}));
+    out["cause_map"] = picture(cause_map(d, a->rendered.image));
+    out["a"] = py::cast(a);
     out["b"] = py::cast(std::make_shared<PyFrame>(PyFrame{side_frame(*c.b)}));
     return out;
 }
