@@ -2,12 +2,17 @@
 
 #include "app/options.h"
 #include "io/error.h"
+#include "io/write_file.h"
 
+#include <chrono>
 #include <climits>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
+#include <unistd.h>
+#include <thread>
 
 #ifdef GLINT_HAVE_MPI
 #include <mpi.h>
@@ -50,8 +55,28 @@ int ranks() {
 
 #ifdef GLINT_HAVE_MPI
 
+namespace {
+
+// mpirun ends every rank with SIGTERM when one is lost (killed, crashed) or the run is
+// interrupted: rank 0 says so in one line, and whatever rank removes the temporary file of an
+// output it was writing (io/write_file.h), then ends as SIGTERM would have ended it.
+void on_terminate(int) {
+    if (rank_ == 0) {
+        static const char message[] =
+            "glint: error: rank 0: mpirun is ending the run (a rank was lost, or the run was "
+            "interrupted); no output was written\n";
+        [[maybe_unused]] const ssize_t n = ::write(2, message, sizeof message - 1);
+    }
+    remove_pending_write();
+    std::signal(SIGTERM, SIG_DFL);
+    std::raise(SIGTERM);
+}
+
+} // namespace
+
 int start_ranks() {
     if (launched_ranks() <= 1) return -1;
+    std::signal(SIGTERM, on_terminate);
     // Worker threads claim tiles (MPI_Fetch_and_op), one at a time under a mutex.
     int provided = 0;
     MPI_Init_thread(nullptr, nullptr, MPI_THREAD_SERIALIZED, &provided);
@@ -123,103 +148,194 @@ int guarded_on_ranks(const std::function<int()>& body) {
 
 namespace {
 
-// Tiles claimed from a counter on rank 0 (an MPI window, fetch-and-add), counted from 0 again
-// after each loop's exchange; the exchange is every rank's list of tiles and their pixels, packed
-// tile by tile (colour 3 bytes, cut-off weight 4, id 4, path key 8 when asked), gathered by every
-// rank.
+// Test-only faults (tests/mpi_test.sh), read once per frame from the environment:
+//   GLINT_TEST_RANK_KILL=R:K   rank R raises SIGKILL as it takes its K-th tile (counted from 1);
+//   GLINT_TEST_RANK_SLOW=R:MS  rank R sleeps MS milliseconds before each tile it asks for.
+struct TestFaults {
+    int kill_at = 0;  // this rank's tile to die at; 0: never
+    int slow_ms = 0;  // per tile
+    static TestFaults read() {
+        TestFaults faults;
+        const auto for_me = [](const char* name, int& value) {
+            int who = -1, what = 0;
+            if (const char* text = std::getenv(name))
+                if (std::sscanf(text, "%d:%d", &who, &what) == 2 && who == rank_) value = what;
+        };
+        for_me("GLINT_TEST_RANK_KILL", faults.kill_at);
+        for_me("GLINT_TEST_RANK_SLOW", faults.slow_ms);
+        return faults;
+    }
+};
+
+// Tiles claimed from counters on rank 0 (an MPI window, fetch-and-add), one counter a loop so that
+// no loop waits for the others to start it afresh. After each loop every rank sends its tiles'
+// pixels (those the loop wrote: each tile's number, then its pixels' layers, app/rank_records.h)
+// to rank 0, which alone holds the whole image and decides which pixels a later loop refines; that
+// decision goes back to every rank as runs of pixels.
 class MpiExchange final : public TileExchange {
   public:
-    explicit MpiExchange(int tiles) : TileExchange(tiles), tiles_(tiles) {
-        std::int64_t* counter = nullptr;
-        MPI_Win_allocate(rank_ == 0 ? static_cast<MPI_Aint>(sizeof(std::int64_t)) : 0,
-                         sizeof(std::int64_t), MPI_INFO_NULL, MPI_COMM_WORLD, &counter, &window_);
-        if (rank_ == 0) *counter = 0;
-        MPI_Barrier(MPI_COMM_WORLD); // the counter is 0 before anyone adds to it
+    // A frame's loops: centres, grids and at most kMaxSpreadRounds rounds (trace/sampling.h).
+    static constexpr int kLoops = 32;
+
+    explicit MpiExchange(int tiles)
+        : TileExchange(tiles), tiles_(tiles), faults_(TestFaults::read()) {
+        std::int64_t* counters = nullptr;
+        const MPI_Aint bytes = rank_ == 0 ? kLoops * static_cast<MPI_Aint>(sizeof(std::int64_t)) : 0;
+        MPI_Win_allocate(bytes, sizeof(std::int64_t), MPI_INFO_NULL, MPI_COMM_WORLD, &counters,
+                         &window_);
+        if (rank_ == 0) std::fill_n(counters, kLoops, 0);
+        MPI_Barrier(MPI_COMM_WORLD); // the counters are 0 before anyone adds to them
         MPI_Win_lock_all(0, window_);
+        if (rank_ == 0) poller_ = std::thread([this] { poll(); });
     }
     ~MpiExchange() override {
+        {
+            const std::lock_guard lock(mutex_);
+            stop_ = true;
+        }
+        if (poller_.joinable()) poller_.join();
         MPI_Win_unlock_all(window_);
         MPI_Win_free(&window_);
     }
-    double seconds() const { return seconds_; }
+    const PassExchange& after(FramePass pass) const { return figures_[static_cast<int>(pass)]; }
 
     int claim() override {
+        if (faults_.slow_ms > 0)
+            std::this_thread::sleep_for(std::chrono::milliseconds(faults_.slow_ms));
         const std::lock_guard lock(mutex_);
+        claiming_ = true;
         if (exhausted_) return -1;
+        if (loop_ >= kLoops) throw std::logic_error("a frame of more loops than the exchange counts");
         const std::int64_t one = 1;
         std::int64_t tile = 0;
-        MPI_Fetch_and_op(&one, &tile, MPI_INT64_T, 0, 0, MPI_SUM, window_);
+        MPI_Fetch_and_op(&one, &tile, MPI_INT64_T, 0, loop_, MPI_SUM, window_);
         MPI_Win_flush(0, window_);
         if (tile >= tiles_) exhausted_ = true;
-        return exhausted_ ? -1 : static_cast<int>(tile);
+        if (exhausted_) return -1;
+        ++claimed_;
+        if (faults_.kill_at == claimed_) std::raise(SIGKILL);
+        return static_cast<int>(tile);
     }
 
-    void share(RenderResult& result, std::vector<std::uint64_t>* keys) override {
+    void gather(FramePass pass, RenderResult& result, std::vector<std::uint64_t>* keys,
+                const std::vector<std::uint8_t>* only) override {
         const Stopwatch watch;
-        const int width = result.radiance.width, height = result.radiance.height;
-        std::vector<int> my_tiles;
-        std::vector<char> mine;
-        for (int t = 0; t < tiles_; ++t) {
-            if (!this->mine()[static_cast<std::size_t>(t)]) continue;
-            my_tiles.push_back(t);
-            for_each_pixel_of_tile(width, height, t,
-                                   [&](std::size_t i) { pack_pixel(result, keys, i, mine); });
+        {
+            const std::lock_guard lock(mutex_);
+            claiming_ = false; // the poller leaves MPI to this thread until the next loop
         }
-        // Every rank's tiles and pixels, in rank order, each rank's tiles ascending: as packed.
-        const std::vector<int> tiles = all_gather(my_tiles);
-        const std::vector<char> all = all_gather(mine);
+        PassExchange& figures = figures_[static_cast<int>(pass)];
+        const int width = result.radiance.width, height = result.radiance.height;
+        // A pass over a mask's pixels (adaptive antialiasing's grids) changed only their colour
+        // and cut-off weight: their ids, AOVs and keys on this rank may be another rank's.
+        const PassLayers layers = only ? PassLayers::refinement : PassLayers::all;
+        const auto pixels_of = [&](int tile, const auto& visit) {
+            for_each_pixel_of_tile(width, height, tile, [&](std::size_t i) {
+                if (!only || (*only)[i]) visit(i);
+            });
+        };
+        // Rank 0's own tiles are in place already.
+        std::vector<char> mine;
+        if (rank_ != 0)
+            for (int t = 0; t < tiles_; ++t) {
+                if (!this->mine()[static_cast<std::size_t>(t)]) continue;
+                pack(TileHeader{static_cast<std::uint32_t>(t)}, mine);
+                pixels_of(t, [&](std::size_t i) { pack_pixel(result, keys, i, mine, layers); });
+            }
+        const std::vector<char> all = gather_on_root(mine, figures);
         const char* at = all.data();
         const char* const end = at + all.size();
-        // Every pixel packs the same layers, so this rank's own tiles (already in place) are
-        // skipped by their size.
-        std::vector<char> one;
-        pack_pixel(result, keys, 0, one);
-        for (const int t : tiles) {
-            if (this->mine()[static_cast<std::size_t>(t)]) {
-                at += tile_rect(width, height, t).pixels() * one.size();
-                continue;
-            }
-            for_each_pixel_of_tile(width, height, t,
-                                   [&](std::size_t i) { unpack_pixel(result, keys, i, at, end); });
+        while (at < end) {
+            TileHeader header;
+            unpack(header, at, end);
+            if (header.tile >= static_cast<std::uint32_t>(tiles_))
+                throw std::runtime_error("a rank sent a tile the frame does not have");
+            pixels_of(static_cast<int>(header.tile),
+                      [&](std::size_t i) { unpack_pixel(result, keys, i, at, end, layers); });
         }
-        // Every rank has finished claiming (it is here): the next loop counts from 0 again, and
-        // nobody claims before it does.
-        if (rank_ == 0) {
-            const std::int64_t zero = 0;
-            MPI_Accumulate(&zero, 1, MPI_INT64_T, 0, 0, 1, MPI_INT64_T, MPI_REPLACE, window_);
-            MPI_Win_flush(0, window_);
-        }
-        MPI_Barrier(MPI_COMM_WORLD);
         next_loop();
+        ++loop_;
         exhausted_ = false;
-        seconds_ += watch.seconds();
+        ++figures.exchanges;
+        figures.seconds += watch.seconds();
+    }
+
+    bool decides() const override { return rank_ == 0; }
+
+    void agree(FramePass pass, std::vector<std::uint8_t>& mask) override {
+        const Stopwatch watch;
+        PassExchange& figures = figures_[static_cast<int>(pass)];
+        std::vector<char> bytes;
+        if (rank_ == 0) pack_mask(mask, bytes);
+        std::uint64_t size = bytes.size();
+        MPI_Bcast(&size, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+        if (size > static_cast<std::uint64_t>(INT_MAX))
+            throw std::runtime_error("a mask of over 2 GiB to hand out");
+        bytes.resize(size);
+        MPI_Bcast(bytes.data(), static_cast<int>(size), MPI_BYTE, 0, MPI_COMM_WORLD);
+        const std::uint64_t moved = sizeof size + size;
+        if (rank_ == 0) {
+            figures.sent += moved * static_cast<std::uint64_t>(ranks_ - 1);
+        } else {
+            figures.received += moved;
+            const char* at = bytes.data();
+            mask = unpack_mask(at, at + bytes.size());
+        }
+        ++figures.exchanges;
+        figures.seconds += watch.seconds();
     }
 
   private:
-    // Every rank's `mine`, concatenated in rank order, on every rank.
-    template <class T> static std::vector<T> all_gather(const std::vector<T>& mine) {
-        const std::size_t bytes = mine.size() * sizeof(T);
-        if (bytes > static_cast<std::size_t>(INT_MAX))
+    // Rank 0, while a loop's tiles are claimed: MPI made to progress every 0.2 ms. Where the
+    // window's fetch-and-add travels as messages (over TCP, osc/pt2pt), rank 0 answers another
+    // rank's claim only inside an MPI call, which its tracing threads make only between their own
+    // tiles; over shared memory the claiming rank adds alone and this costs a probe.
+    void poll() {
+        for (;;) {
+            std::this_thread::sleep_for(std::chrono::microseconds(200));
+            const std::lock_guard lock(mutex_);
+            if (stop_) return;
+            if (!claiming_) continue;
+            int flag = 0;
+            MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, MPI_STATUS_IGNORE);
+        }
+    }
+
+    // Every rank's `mine` on rank 0, concatenated in rank order (empty elsewhere), counted.
+    static std::vector<char> gather_on_root(const std::vector<char>& mine, PassExchange& figures) {
+        if (mine.size() > static_cast<std::size_t>(INT_MAX))
             throw std::runtime_error("a rank's share of the frame is over 2 GiB: use more ranks");
-        const int count = static_cast<int>(bytes);
-        std::vector<int> counts(static_cast<std::size_t>(ranks_)), offsets(counts.size());
-        MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+        const int count = static_cast<int>(mine.size());
+        std::vector<int> counts(rank_ == 0 ? static_cast<std::size_t>(ranks_) : 0),
+            offsets(counts.size());
+        MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
         long long total = 0;
         for (std::size_t r = 0; r < counts.size(); ++r) {
-            if (total > INT_MAX) throw std::runtime_error("the frame is over 2 GiB to exchange");
+            if (total > INT_MAX) throw std::runtime_error("the frame is over 2 GiB to gather");
             offsets[r] = static_cast<int>(total), total += counts[r];
         }
-        std::vector<T> all(static_cast<std::size_t>(total) / sizeof(T));
-        MPI_Allgatherv(mine.data(), count, MPI_BYTE, all.data(), counts.data(), offsets.data(),
-                       MPI_BYTE, MPI_COMM_WORLD);
+        std::vector<char> all(static_cast<std::size_t>(total));
+        MPI_Gatherv(mine.data(), count, MPI_BYTE, all.data(), counts.data(), offsets.data(),
+                    MPI_BYTE, 0, MPI_COMM_WORLD);
+        if (rank_ == 0) {
+            figures.received += static_cast<std::uint64_t>(total) +
+                                sizeof(int) * static_cast<std::uint64_t>(ranks_ - 1);
+        } else {
+            figures.sent += mine.size() + sizeof(int);
+        }
         return all;
     }
 
     int tiles_;
+    TestFaults faults_;
     MPI_Win window_ = MPI_WIN_NULL;
-    std::mutex mutex_; // one claim at a time (MPI_THREAD_SERIALIZED)
+    std::mutex mutex_; // one claim (or poll) at a time (MPI_THREAD_SERIALIZED)
+    std::thread poller_;
+    bool claiming_ = false, stop_ = false; // under mutex_
     bool exhausted_ = false;
-    double seconds_ = 0;
+    int loop_ = 0;     // this frame's loops so far: the counter this loop claims from
+    int claimed_ = 0;  // this rank's tiles, all loops
+    PassExchange figures_[3];
 };
 
 } // namespace
@@ -228,8 +344,10 @@ std::unique_ptr<TileExchange> make_exchange(int tiles) {
     return std::make_unique<MpiExchange>(tiles);
 }
 
-double exchange_seconds(const TileExchange& exchange) {
-    return static_cast<const MpiExchange&>(exchange).seconds();
+void exchange_figures(const TileExchange& exchange, RankFigures& figures) {
+    const auto& mpi = static_cast<const MpiExchange&>(exchange);
+    for (const FramePass pass : {FramePass::centres, FramePass::grids, FramePass::spread})
+        figures.after(pass) = mpi.after(pass);
 }
 
 std::vector<std::vector<char>> gather_bytes(const std::vector<char>& mine) {
@@ -293,9 +411,7 @@ std::unique_ptr<TileExchange> make_exchange(int) {
     return nullptr;
 }
 
-double exchange_seconds(const TileExchange&) {
-    return 0;
-}
+void exchange_figures(const TileExchange&, RankFigures&) {}
 
 std::vector<std::vector<char>> gather_bytes(const std::vector<char>& mine) {
     return {mine};

@@ -1,8 +1,8 @@
 // One frame across MPI ranks (docs/DISTRIBUTED.md): `mpirun -np N glint render …` (and a
 // `glint tradeoff` sweep spread over ranks, one setting per rank at a time). Every rank
 // loads the scene and builds its own structures; tiles are handed out as ranks ask for them
-// (trace/tiles.h's TileExchange) and exchanged after each pass; rank 0 writes the PNG and
-// prints the report. Without mpirun, or in a build without MPI, glint is one process as always:
+// (trace/tiles.h's TileExchange) and gathered on rank 0 after each pass; rank 0 decides what a
+// later pass refines, writes the PNG and prints the report. Without mpirun, or in a build without MPI, glint is one process as always:
 // nothing here is called but the checks.
 #pragma once
 
@@ -43,9 +43,10 @@ int agree_on(const std::function<void()>& step);
 int guarded_on_ranks(const std::function<int()>& body);
 
 // The tile claims and pixel exchange of one frame of `tiles` tiles over MPI (collective: every
-// rank makes it, and lets it go, together), with the seconds its exchanges took.
+// rank makes it, and lets it go, together), and what its exchanges after each kind of pass took
+// and moved (into figures.centres, .grids, .spread).
 std::unique_ptr<TileExchange> make_exchange(int tiles);
-double exchange_seconds(const TileExchange& exchange);
+void exchange_figures(const TileExchange& exchange, RankFigures& figures);
 
 // Every rank's bytes on rank 0 (one vector per rank there; empty elsewhere).
 std::vector<std::vector<char>> gather_bytes(const std::vector<char>& mine);

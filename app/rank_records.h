@@ -6,8 +6,11 @@
 
 #include "trace/frame_records.h"
 #include "trace/ray_tree.h"
+#include "trace/tiles.h"
 
+#include <algorithm>
 #include <cstdint>
+#include <stdexcept>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -25,19 +28,48 @@ template <> struct RecordFields<FrameCounters> {
     }
 };
 
+// What one kind of pass's exchanges moved on a rank: its pixels gathered on rank 0, and the
+// masks rank 0 handed out for it. Bytes are the messages' payloads (records and their counts).
+struct PassExchange {
+    double seconds = 0;          // wall time in the exchange, waiting for the others included
+    std::uint64_t sent = 0;      // bytes this rank sent
+    std::uint64_t received = 0;  // bytes this rank received
+    std::uint64_t exchanges = 0; // gathers and hand-outs
+};
+template <> struct RecordFields<PassExchange> {
+    template <class R, class V> static void visit(R& r, V&& v) {
+        v("seconds", r.seconds), v("sent", r.sent), v("received", r.received);
+        v("exchanges", r.exchanges);
+    }
+};
+
 // What each rank did for one frame, gathered on rank 0 for the report.
 struct RankFigures {
     double load = 0, prepare = 0; // scene load and World (structures), seconds
     double gl = 0;                // GL context, shaders, upload, item buffer
     double trace = 0;             // primary hits and shading, exchanges excluded
-    double exchange = 0;          // pixels exchanged after each pass
-    std::uint64_t tiles = 0;      // tiles traced (all passes)
-    std::uint64_t rays = 0;       // rays cast
+    // The exchanges after each kind of pass (trace/tiles.h's FramePass).
+    PassExchange centres, grids, spread;
+    std::uint64_t tiles = 0; // tiles traced (all passes)
+    std::uint64_t rays = 0;  // rays cast
+
+    PassExchange& after(FramePass pass) {
+        return pass == FramePass::centres ? centres : pass == FramePass::grids ? grids : spread;
+    }
+    PassExchange exchange() const { // all passes'
+        PassExchange sum;
+        for (const PassExchange* p : {&centres, &grids, &spread}) {
+            sum.seconds += p->seconds, sum.sent += p->sent, sum.received += p->received;
+            sum.exchanges += p->exchanges;
+        }
+        return sum;
+    }
 };
 template <> struct RecordFields<RankFigures> {
     template <class R, class V> static void visit(R& r, V&& v) {
         v("load", r.load), v("prepare", r.prepare), v("gl", r.gl), v("trace", r.trace);
-        v("exchange", r.exchange), v("tiles", r.tiles), v("rays", r.rays);
+        v("centres", r.centres), v("grids", r.grids), v("spread", r.spread);
+        v("tiles", r.tiles), v("rays", r.rays);
     }
 };
 
@@ -149,6 +181,63 @@ template <> struct RecordFields<PixelAov> {
         v("depth", p.depth), v("normal", p.normal), v("id", p.id);
     }
 };
+// A rank's pixels of one tile follow its number; which pixels, and which layers, both sides
+// know (every pixel of the tile, or those of the pass's mask).
+struct TileHeader {
+    std::uint32_t tile = 0;
+};
+template <> struct RecordFields<TileHeader> {
+    template <class R, class V> static void visit(R& t, V&& v) { v("tile", t.tile); }
+};
+// Which pixels a pass refines, as rank 0 hands it out: the image's pixel count and how many runs
+// follow, then the runs, row by row from the top left: `skip` pixels not refined, `take` refined.
+struct MaskHeader {
+    std::uint64_t pixels = 0;
+    std::uint64_t runs = 0;
+};
+template <> struct RecordFields<MaskHeader> {
+    template <class R, class V> static void visit(R& m, V&& v) {
+        v("pixels", m.pixels), v("runs", m.runs);
+    }
+};
+struct MaskRun {
+    std::uint32_t skip = 0, take = 0;
+};
+template <> struct RecordFields<MaskRun> {
+    template <class R, class V> static void visit(R& m, V&& v) {
+        v("skip", m.skip), v("take", m.take);
+    }
+};
+
+// A mask (1 where a pixel is refined) as MaskHeader and MaskRun records, and read back.
+inline void pack_mask(const std::vector<std::uint8_t>& mask, std::vector<char>& out) {
+    std::vector<MaskRun> runs;
+    for (std::size_t i = 0; i < mask.size();) {
+        MaskRun run;
+        for (; i < mask.size() && !mask[i]; ++i) ++run.skip;
+        for (; i < mask.size() && mask[i]; ++i) ++run.take;
+        if (run.take) runs.push_back(run);
+    }
+    pack(MaskHeader{mask.size(), runs.size()}, out);
+    for (const MaskRun& run : runs) pack(run, out);
+}
+inline std::vector<std::uint8_t> unpack_mask(const char*& at, const char* end) {
+    MaskHeader header;
+    unpack(header, at, end);
+    std::vector<std::uint8_t> mask(header.pixels, 0);
+    std::size_t i = 0;
+    for (std::uint64_t r = 0; r < header.runs; ++r) {
+        MaskRun run;
+        unpack(run, at, end);
+        if (std::uint64_t{run.skip} + run.take > mask.size() - i)
+            throw std::runtime_error("a mask from rank 0 runs past its image");
+        i += run.skip;
+        std::fill_n(mask.begin() + static_cast<std::ptrdiff_t>(i), run.take, 1);
+        i += run.take;
+    }
+    return mask;
+}
+
 struct PixelPathKey {
     std::uint64_t key = 0;
 };
@@ -165,11 +254,32 @@ inline void set_colour(FloatImage& image, std::size_t i, const PixelColour& c) {
     p[0] = c.r, p[1] = c.g, p[2] = c.b;
 }
 
-// Pixel i of `result` (and of `keys`, where given), each layer the frame keeps.
+// What a refining pass (the grids of a mask's pixels) changes of a pixel: its colour and cut-off
+// weight (and the clamped mean, sent beside it); its id, AOVs and path key stay the first pass's.
+struct PixelRefinement {
+    PixelColour radiance;
+    float omitted_weight = 0;
+};
+template <> struct RecordFields<PixelRefinement> {
+    template <class R, class V> static void visit(R& p, V&& v) {
+        v("radiance", p.radiance), v("omitted_weight", p.omitted_weight);
+    }
+};
+
+// Which of a pixel's layers a pass wrote: all those the frame keeps, or (a pass over a mask's
+// pixels) those a refinement changes.
+enum class PassLayers { all, refinement };
+
+// Pixel i of `result` (and of `keys`, where given): the layers a pass of `layers` wrote.
 inline void pack_pixel(const RenderResult& result, const std::vector<std::uint64_t>* keys,
-                       std::size_t i, std::vector<char>& out) {
-    pack(PixelFacts{colour_at(result.radiance, i), result.omitted_weight[i], result.ids[i]}, out);
+                       std::size_t i, std::vector<char>& out, PassLayers layers = PassLayers::all) {
+    if (layers == PassLayers::refinement)
+        pack(PixelRefinement{colour_at(result.radiance, i), result.omitted_weight[i]}, out);
+    else
+        pack(PixelFacts{colour_at(result.radiance, i), result.omitted_weight[i], result.ids[i]},
+             out);
     if (!result.clamped.empty()) pack(colour_at(result.clamped, i), out);
+    if (layers == PassLayers::refinement) return;
     if (!result.aovs.empty()) {
         const float* n = &result.aovs.normal[3 * i];
         pack(PixelAov{result.aovs.depth[i], {n[0], n[1], n[2]}, result.aovs.id[i]}, out);
@@ -179,16 +289,24 @@ inline void pack_pixel(const RenderResult& result, const std::vector<std::uint64
 
 // Reads back what pack_pixel wrote into pixel i of `result` (and `keys`).
 inline void unpack_pixel(RenderResult& result, std::vector<std::uint64_t>* keys, std::size_t i,
-                         const char*& at, const char* end) {
-    PixelFacts facts;
-    unpack(facts, at, end);
-    set_colour(result.radiance, i, facts.radiance);
-    result.omitted_weight[i] = facts.omitted_weight, result.ids[i] = facts.id;
+                         const char*& at, const char* end, PassLayers layers = PassLayers::all) {
+    if (layers == PassLayers::refinement) {
+        PixelRefinement refinement;
+        unpack(refinement, at, end);
+        set_colour(result.radiance, i, refinement.radiance);
+        result.omitted_weight[i] = refinement.omitted_weight;
+    } else {
+        PixelFacts facts;
+        unpack(facts, at, end);
+        set_colour(result.radiance, i, facts.radiance);
+        result.omitted_weight[i] = facts.omitted_weight, result.ids[i] = facts.id;
+    }
     if (!result.clamped.empty()) {
         PixelColour clamped;
         unpack(clamped, at, end);
         set_colour(result.clamped, i, clamped);
     }
+    if (layers == PassLayers::refinement) return;
     if (!result.aovs.empty()) {
         PixelAov aov;
         unpack(aov, at, end);

@@ -230,24 +230,39 @@ void write_image(const RenderJob& job, const RenderResult& result) {
     write_exr(job.output, layers);
 }
 
-// Several ranks: every rank's figures on rank 0, and the frame's counters summed over ranks
-// (each rank counted its own tiles' rays and resolves). Prints the per-rank table.
-void combine_ranks(Frame& frame, const RankFigures& mine, int threads) {
+// Several ranks: every rank's figures on rank 0 (returned there; empty elsewhere), and the
+// frame's counters summed over ranks (each rank counted its own tiles' rays and resolves).
+// Prints the per-rank table.
+std::vector<RankFigures> combine_ranks(Frame& frame, const RankFigures& mine, int threads) {
     FrameCounters counters{frame.result.rays, frame.primary_stats};
     sum_over_ranks(counters);
     frame.result.rays = counters.rays, frame.primary_stats = counters.primary;
-    const std::vector<RankFigures> all = gather_figures(mine);
-    if (rank() != 0) return;
-    std::printf("ranks: %d × %d threads, tiles claimed as ranks ask, pixels exchanged after each "
-                "pass\n",
+    std::vector<RankFigures> all = gather_figures(mine);
+    if (rank() != 0) return all;
+    std::printf("ranks: %d × %d threads, tiles claimed as ranks ask, each pass's pixels gathered "
+                "on rank 0\n",
                 ranks(), threads);
+    constexpr double MB = 1e6;
     for (std::size_t r = 0; r < all.size(); ++r) {
         const RankFigures& f = all[r];
+        const PassExchange x = f.exchange();
         std::printf(
             "  rank %zu: %llu tiles (all passes), %.2f M rays; load %.3f s, structures %.3f s, "
-            "GL %.3f s, trace %.3f s, exchange %.3f s\n",
-            r, static_cast<unsigned long long>(f.tiles), static_cast<double>(f.rays) / 1e6, f.load, f.prepare, f.gl, f.trace, f.exchange);
+            "GL %.3f s, trace %.3f s, exchange %.3f s (%.2f MB sent, %.2f MB received)\n",
+            r, static_cast<unsigned long long>(f.tiles), static_cast<double>(f.rays) / 1e6,
+            f.load, f.prepare, f.gl, f.trace, x.seconds, static_cast<double>(x.sent) / MB,
+            static_cast<double>(x.received) / MB);
+        for (const FramePass pass : {FramePass::centres, FramePass::grids, FramePass::spread}) {
+            const PassExchange& p = all[r].after(pass);
+            if (p.exchanges == 0) continue;
+            std::printf("    after %s: %llu exchange%s, %.3f s, %.2f MB sent, %.2f MB received\n",
+                        std::string(name_of(pass)).c_str(),
+                        static_cast<unsigned long long>(p.exchanges), p.exchanges == 1 ? "" : "s",
+                        p.seconds, static_cast<double>(p.sent) / MB,
+                        static_cast<double>(p.received) / MB);
+        }
     }
+    return all;
 }
 
 // A sequence: the scene loaded, its meshes, BVHs and textures prepared, and the GL context and
@@ -359,15 +374,17 @@ int run_render(const RenderArgs& args) {
     const double frame_seconds = phase.lap();
     const int threads =
         args.frame.threads > 0 ? args.frame.threads : tbb::this_task_arena::max_concurrency();
+    std::vector<RankFigures> rank_figures;
     if (on_ranks()) {
         const PhaseTimes& t = frame.times;
-        const double gl = t.context + t.compile + t.upload + t.raster;
-        const double exchanged = exchange_seconds(*exchange);
-        combine_ranks(frame,
-                      {load_seconds, prepare_seconds, gl, frame_seconds - gl - exchanged, exchanged,
-                       static_cast<std::uint64_t>(exchange->tiles_taken()),
-                       frame.result.rays.total()},
-                      threads);
+        RankFigures mine;
+        mine.load = load_seconds, mine.prepare = prepare_seconds;
+        mine.gl = t.context + t.compile + t.upload + t.raster;
+        exchange_figures(*exchange, mine);
+        mine.trace = frame_seconds - mine.gl - mine.exchange().seconds;
+        mine.tiles = static_cast<std::uint64_t>(exchange->tiles_taken());
+        mine.rays = frame.result.rays.total();
+        rank_figures = combine_ranks(frame, mine, threads);
         if (rank() != 0) return 0;
     }
     phase.restart();
@@ -377,7 +394,7 @@ int run_render(const RenderArgs& args) {
     const RenderReport report{job.scene_path, job.output,  scene,           args.frame,
                               world,          frame,       cutoff_bound(scene, frame.result),
                               threads,        load_seconds, prepare_seconds, write_seconds,
-                              total_seconds};
+                              total_seconds,  rank_figures};
     if (!args.stats.empty()) write_file_atomically(args.stats, stats_json(report).dump(2) + "\n");
     if (!args.aa_map.empty()) write_png(args.aa_map, refinement_map(frame.result));
     print_report(report);

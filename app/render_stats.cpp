@@ -54,6 +54,11 @@ nlohmann::ordered_json stats_json(const RenderReport& r) {
         {"nodes", accel.node_count()},
         {"nodes_visited_per_ray", static_cast<double>(counts.nodes) / queries},
         {"primitives_tested_per_ray", static_cast<double>(counts.primitives) / queries}};
+    if (!r.ranks.empty()) {
+        // The per-rank lines of the report; bytes and seconds of the exchanges by kind of pass.
+        nlohmann::ordered_json& ranks = stats["ranks"] = nlohmann::ordered_json::array();
+        for (const RankFigures& f : r.ranks) ranks.push_back(record_json(f));
+    }
     if (!r.frame.result.refined.empty())
         stats["refined_pixels"] = std::count(r.frame.result.refined.begin(),
                                              r.frame.result.refined.end(), std::uint8_t{1});

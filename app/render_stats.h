@@ -3,6 +3,7 @@
 #pragma once
 
 #include "app/options.h"
+#include "app/rank_records.h"
 #include "trace/cutoff.h"
 
 #include <nlohmann/json.hpp>
@@ -21,6 +22,8 @@ struct RenderReport {
     CutoffBound cutoff;
     int threads;
     double load_seconds, prepare_seconds, write_seconds, total_seconds;
+    // Under mpirun, on rank 0: each rank's figures (its exchanges per kind of pass among them).
+    std::vector<RankFigures> ranks = {};
 };
 
 // The --stats file: settings, seconds per phase, rays, cut-off, structure, hybrid figures. The

@@ -1,6 +1,7 @@
 #include "io/write_file.h"
 
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -9,6 +10,18 @@
 #include <unistd.h>
 
 namespace glint {
+
+namespace {
+
+// The temporary file being written, for remove_pending_write (a signal handler reads it).
+char pending_[4096];
+volatile std::sig_atomic_t pending_set_ = 0;
+
+} // namespace
+
+void remove_pending_write() noexcept {
+    if (pending_set_) ::unlink(pending_);
+}
 
 void write_file_atomically(const std::filesystem::path& path, const std::string& bytes) {
     const auto fail = [&](const std::string& what) {
@@ -21,6 +34,13 @@ void write_file_atomically(const std::filesystem::path& path, const std::string&
     std::string temp = (dir / hidden_name).string();
     const int fd = mkstemp(temp.data());
     if (fd < 0) fail(std::strerror(errno));
+    if (temp.size() < sizeof pending_) {
+        std::memcpy(pending_, temp.c_str(), temp.size() + 1);
+        pending_set_ = 1;
+    }
+    struct Done {
+        ~Done() { pending_set_ = 0; }
+    } done;
     std::size_t written = 0;
     while (written < bytes.size()) {
         const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);

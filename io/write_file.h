@@ -12,6 +12,10 @@ namespace glint {
 // that `path` is either untouched or complete. Throws std::runtime_error naming the path.
 void write_file_atomically(const std::filesystem::path& path, const std::string& bytes);
 
+// Removes the temporary file of a write in progress, if any: for a signal handler (it only
+// calls unlink), when the process is being ended from outside mid-write.
+void remove_pending_write() noexcept;
+
 // Writes encode()'s bytes to `path` through write_file_atomically; an encoding failure
 // (std::runtime_error) is rethrown naming the path and `format`.
 template <class Encode>

@@ -1,17 +1,22 @@
 #!/usr/bin/env bash
 # glint across MPI ranks (docs/DISTRIBUTED.md), run by ctest where MPI was found:
-#   mpi_test.sh GLINT MPIRUN identical NP   the image of `mpirun -np NP` is byte for byte the
-#                                           single process's (and on three scenes its EXR with
-#                                           every AOV): shipped and SPD scenes, each in one
-#                                           mode and with one of: one sample, adaptive 3x3,
-#                                           uniform 2x2, in turn, shifted by NP, so that NP 2 and
-#                                           3 together render each scene in both modes (each
-#                                           mpirun costs seconds where starting MPI is slow)
+#   mpi_test.sh GLINT MPIRUN identical NP   the output of `mpirun -np NP` is byte for byte the
+#                                           single process's: every shipped and SPD scene in both
+#                                           modes with adaptive 3x3, the (scene, mode) pairs dealt
+#                                           out over NP 2, 3 and 4 in turn, every other pair as an
+#                                           EXR with every AOV; and the shipped scenes with one
+#                                           sample and uniform 2x2 too (each mpirun costs about
+#                                           0.5 s of MPI start-up, hence one run a pair); NP 2
+#                                           also checks that `mpirun -np 1` is one process
 #   mpi_test.sh GLINT MPIRUN bad-input      bad input on the ranks: exit 2, one message, no file
 #   mpi_test.sh GLINT MPIRUN tradeoff       a sweep spread over 2 ranks gives the single process's
 #                                           CSV, timings (and the Pareto marks they decide) aside
-#   mpi_test.sh GLINT MPIRUN killed-rank    a rank killed mid-render ends the run with an error,
-#                                           not a hang, and leaves no output
+#   mpi_test.sh GLINT MPIRUN killed-rank    a rank that dies mid-frame (SIGKILL at a given tile,
+#                                           GLINT_TEST_RANK_KILL) ends the run with rank 0's
+#                                           message, not a hang, non-zero, and leaves no output;
+#                                           rank 0 dying leaves none either
+#   mpi_test.sh GLINT MPIRUN slow-rank      a rank slowed down (GLINT_TEST_RANK_SLOW) takes fewer
+#                                           tiles, and the image is the single process's
 #   mpi_test.sh GLINT MPIRUN frames         a sequence's frames spread over 2 ranks are the single
 #                                           process's, file for file
 set -euo pipefail
@@ -20,6 +25,8 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 # Open MPI refuses root unless told; CI runs as root. --oversubscribe: 3 ranks on 2 cores.
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMPI_MCA_rmaps_base_oversubscribe=1
+# One machine: shared memory only (no TCP interfaces probed), a third of MPI's start-up here.
+export OMPI_MCA_btl=self,vader OMPI_MCA_pml=ob1
 work=$(mktemp -d "${TMPDIR:-/tmp}/glint-mpi.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }
@@ -27,35 +34,51 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 case "$what" in
 identical)
   np=$4
-  scenes=("$root"/scenes/*.json "$root"/tests/data/spd/{balls-1,gears-1,tree-3}.nff)
-  variants=("--samples 1" "--samples 3 --aa adaptive" "--samples 2 --aa uniform")
+  scenes=("$root"/scenes/*.json "$root"/scenes/spd/*.nff)
   modes=(hybrid ray)
   runs=0
-  for i in "${!scenes[@]}"; do
-    scene=${scenes[$i]}
-    for mode in "${modes[$(((i + np) % 2))]}"; do
-      for samples in "${variants[$(((i + np) % 3))]}"; do
-        args=("$scene" --size 160x64 --mode "$mode" $samples --threads 1) # 10 tiles
-        "$glint" render "${args[@]}" -o "$work/one.png" >/dev/null
-        "$mpirun" -np "$np" --bind-to none "$glint" render "${args[@]}" -o "$work/many.png" >"$work/out.txt"
-        cmp -s "$work/one.png" "$work/many.png" || fail "np $np: ${args[*]}: the images differ"
-        grep -q "ranks: $np × 1 threads" "$work/out.txt" || fail "np $np: no per-rank report"
-        [ "$(grep -c '^  rank ' "$work/out.txt")" -eq "$np" ] || fail "np $np: not one line per rank"
-        runs=$((runs + 1))
-        # The float image and every AOV too, on the first scenes (an EXR's bytes are a function
-        # of its floats: same floats, same file).
-        if [ "$i" -lt 3 ]; then
-          aovs=(--aov depth,normal,id,cutoff)
-          "$glint" render "${args[@]}" "${aovs[@]}" -o "$work/one.exr" >/dev/null
-          "$mpirun" -np "$np" --bind-to none "$glint" render "${args[@]}" "${aovs[@]}" \
-            -o "$work/many.exr" >/dev/null
-          cmp -s "$work/one.exr" "$work/many.exr" || fail "np $np: ${args[*]}: the EXRs differ"
-          runs=$((runs + 1))
+  # The single process's output and NP ranks', compared byte for byte (an EXR's bytes are a
+  # function of its floats: same floats, same file).
+  same() { # EXTENSION ARGS...
+    local ext=$1
+    shift
+    "$glint" render "$@" -o "$work/one.$ext" >/dev/null
+    "$mpirun" -np "$np" --bind-to none "$glint" render "$@" -o "$work/many.$ext" >"$work/out.txt"
+    cmp -s "$work/one.$ext" "$work/many.$ext" || fail "np $np: $*: the ${ext^^}s differ"
+    grep -q "ranks: $np × 1 threads" "$work/out.txt" || fail "np $np: no per-rank report"
+    [ "$(grep -c '^  rank ' "$work/out.txt")" -eq "$np" ] || fail "np $np: not one line per rank"
+    runs=$((runs + 1))
+  }
+  pair=0
+  for scene in "${scenes[@]}"; do
+    for mode in "${modes[@]}"; do
+      if [ $((pair % 3 + 2)) -eq "$np" ]; then # 160x64: 10 tiles
+        args=("$scene" --size 160x64 --mode "$mode" --samples 3 --aa adaptive --threads 1)
+        if [ $((pair / 3 % 2)) -eq 0 ]; then
+          same png "${args[@]}"
+        else
+          same exr "${args[@]}" --aov depth,normal,id,cutoff
         fi
-      done
+      fi
+      pair=$((pair + 1))
     done
   done
-  echo "np $np: $runs renders identical to the single process's"
+  # One sample a pixel and uniform 2x2 on the shipped scenes, dealt out likewise.
+  variants=("--samples 1" "--samples 2 --aa uniform")
+  i=0
+  for scene in "$root"/scenes/*.json; do
+    if [ $((i % 3 + 2)) -eq "$np" ]; then
+      same png "$scene" --size 160x64 --mode "${modes[$((i % 2))]}" ${variants[$((i % 2))]} --threads 1
+    fi
+    i=$((i + 1))
+  done
+  if [ "$np" -eq 2 ]; then # one rank: one process, no MPI at all
+    "$glint" render "${scenes[0]}" --size 160x64 -o "$work/one.png" >/dev/null
+    "$mpirun" -np 1 "$glint" render "${scenes[0]}" --size 160x64 -o "$work/many.png" >"$work/out.txt"
+    cmp -s "$work/one.png" "$work/many.png" || fail "np 1: the images differ"
+    ! grep -q "^ranks:" "$work/out.txt" || fail "np 1 reported ranks"
+  fi
+  echo "np $np: $runs outputs identical to the single process's"
   ;;
 bad-input)
   cd "$work"
@@ -98,35 +121,38 @@ PY
   ;;
 killed-rank)
   cd "$work"
-  # Long enough to be killed mid-render: ray mode, 4x4 samples a pixel at 1280x960, one thread a
-  # rank (a minute or so alone on 2 cores).
-  "$mpirun" -np 2 --bind-to none "$glint" render "$root/scenes/default.json" --mode ray \
-    --size 1280x960 --samples 4 --aa uniform --threads 1 -o killed.png >out.txt 2>err.txt &
-  launcher=$!
-  victim=
-  for _ in $(seq 100); do # find rank 1 among the launcher's descendants, up to 10 s
-    for pid in $(pgrep -f "render $root/scenes/default.json --mode ray --size 1280x960" || true); do
-      if tr '\0' '\n' <"/proc/$pid/environ" 2>/dev/null | grep -qx 'OMPI_COMM_WORLD_RANK=1'; then
-        victim=$pid
-      fi
-    done
-    [ -n "$victim" ] && break
-    sleep 0.1
+  # Long enough not to end first: ray mode, 4x4 samples a pixel at 1280x960, one thread a rank
+  # (a minute or so alone on 2 cores). The rank dies as it takes its third tile.
+  long=("$root/scenes/default.json" --mode ray --size 1280x960 --samples 4 --aa uniform --threads 1)
+  for victim in 1 0; do
+    set +e
+    GLINT_TEST_RANK_KILL=$victim:3 timeout 60 "$mpirun" -np 2 --bind-to none "$glint" render \
+      "${long[@]}" -o killed.png >out.txt 2>err.txt
+    code=$?
+    set -e
+    [ "$code" -ne 124 ] || fail "rank $victim killed: mpirun still running after 60 s"
+    [ "$code" -ne 0 ] || fail "rank $victim killed: the run exited 0"
+    if [ "$victim" -ne 0 ]; then
+      grep -q "^glint: error: rank 0: mpirun is ending the run (a rank was lost" err.txt ||
+        fail "rank $victim killed: no message from rank 0: $(cat err.txt)"
+    fi
+    [ -z "$(ls -A | grep -v '^out.txt$\|^err.txt$')" ] || fail "rank $victim killed: files left: $(ls -A)"
+    echo "rank $victim killed at its third tile: exit $code, no output"
   done
-  [ -n "$victim" ] || { kill "$launcher"; fail "rank 1 never started"; }
-  sleep 2 # both ranks are rendering now
-  kill -9 "$victim"
-  started=$SECONDS
-  set +e
-  for _ in $(seq 600); do kill -0 "$launcher" 2>/dev/null || break; sleep 0.1; done
-  if kill -0 "$launcher" 2>/dev/null; then kill -9 "$launcher"; fail "mpirun still running 60 s after rank 1 died"; fi
-  wait "$launcher"
-  code=$?
-  set -e
-  [ "$code" -ne 0 ] || fail "the run exited 0 after losing a rank"
-  [ ! -e killed.png ] || fail "an image was written"
-  [ -z "$(ls -A | grep -v '^out.txt$\|^err.txt$')" ] || fail "files left: $(ls -A)"
-  echo "rank 1 killed: mpirun exited $code after $((SECONDS - started)) s, no image"
+  ;;
+slow-rank)
+  cd "$work"
+  # Rank 1 sleeps 20 ms before each tile (a tile here takes a few): it should take far fewer
+  # of the 35 tiles, and the image is the same.
+  args=("$root/scenes/default.json" --size 224x160 --mode ray --samples 3 --aa adaptive --threads 1)
+  "$glint" render "${args[@]}" -o one.png >/dev/null
+  GLINT_TEST_RANK_SLOW=1:20 "$mpirun" -np 2 --bind-to none "$glint" render "${args[@]}" \
+    -o many.png >out.txt
+  cmp -s one.png many.png || fail "a slowed rank changed the image"
+  tiles() { sed -n "s/^  rank $1: \([0-9]*\) tiles.*/\1/p" out.txt; }
+  [ "$(tiles 1)" -lt "$(($(tiles 0) / 2))" ] ||
+    fail "the slowed rank took $(tiles 1) tiles against rank 0's $(tiles 0)"
+  echo "rank 1 slowed: $(tiles 1) tiles against rank 0's $(tiles 0), the same image"
   ;;
 frames)
   args=("$root/scenes/default.json" --frames 5 --orbit --size 48x36 --threads 1)

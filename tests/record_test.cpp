@@ -78,6 +78,11 @@ TEST(Records, EveryRecordRoundTripsFieldByField) {
     expect_round_trip(distinct_values<PixelColour>());
     expect_round_trip(distinct_values<PixelAov>());
     expect_round_trip(distinct_values<PixelPathKey>());
+    expect_round_trip(distinct_values<PixelRefinement>());
+    expect_round_trip(distinct_values<PassExchange>());
+    expect_round_trip(distinct_values<TileHeader>());
+    expect_round_trip(distinct_values<MaskHeader>());
+    expect_round_trip(distinct_values<MaskRun>());
     RunFigures absent = distinct_values<RunFigures>();
     absent.agreement.reset(), absent.bound_held.reset(), absent.refined.reset();
     expect_round_trip(absent);
@@ -90,6 +95,11 @@ TEST(Records, EachPlainRecordsFieldListCoversItsStruct) {
     EXPECT_EQ(field_bytes<RankFigures>(), sizeof(RankFigures));
     EXPECT_EQ(field_bytes<PixelColour>(), sizeof(PixelColour));
     EXPECT_EQ(field_bytes<PixelPathKey>(), sizeof(PixelPathKey));
+    EXPECT_EQ(field_bytes<PixelRefinement>(), sizeof(PixelRefinement));
+    EXPECT_EQ(field_bytes<PassExchange>(), sizeof(PassExchange));
+    EXPECT_EQ(field_bytes<TileHeader>(), sizeof(TileHeader));
+    EXPECT_EQ(field_bytes<MaskHeader>(), sizeof(MaskHeader));
+    EXPECT_EQ(field_bytes<MaskRun>(), sizeof(MaskRun));
     // ImageDifference: an int among doubles leaves 4 bytes of padding.
     EXPECT_EQ(field_bytes<ImageDifference>() + 4, sizeof(ImageDifference));
 }
@@ -99,6 +109,29 @@ TEST(Records, NamesAreQualifiedByTheRecordTheyAreIn) {
     for (const char* name : {"times.shading", "rays.transmission", "diff.rmse",
                              "diff.max_radiance_error", "agreement", "bound_held", "pixels"})
         EXPECT_EQ(names.count(name), 1u) << name;
+}
+
+// A pass's mask as rank 0 hands it out: runs of pixels, read back pixel for pixel; empty, full,
+// and a mask starting and ending with refined pixels included. A mask whose runs overrun its
+// image is refused.
+TEST(Records, AMaskRoundTripsAsRuns) {
+    std::vector<std::vector<std::uint8_t>> masks = {{}, {0, 0, 0}, {1, 1}, {1, 0, 0, 1, 1, 0, 1}};
+    std::vector<std::uint8_t> random(10007);
+    unsigned state = 12345;
+    for (std::uint8_t& m : random) m = ((state = state * 1103515245u + 12345u) >> 16) % 5 == 0;
+    masks.push_back(random);
+    for (const std::vector<std::uint8_t>& mask : masks) {
+        std::vector<char> bytes;
+        pack_mask(mask, bytes);
+        const char* at = bytes.data();
+        EXPECT_EQ(unpack_mask(at, bytes.data() + bytes.size()), mask);
+        EXPECT_EQ(at, bytes.data() + bytes.size());
+    }
+    std::vector<char> bad;
+    pack(MaskHeader{4, 1}, bad);
+    pack(MaskRun{3, 2}, bad);
+    const char* at = bad.data();
+    EXPECT_THROW(unpack_mask(at, bad.data() + bad.size()), std::runtime_error);
 }
 
 // A frame's pixel, with every layer a frame may keep (the clamped mean, the AOVs, the path key),
@@ -130,6 +163,25 @@ TEST(Records, APixelsLayersRoundTripIntoAnotherFrame) {
     EXPECT_EQ(to.aovs.id, from.aovs.id);
     EXPECT_EQ(to.aovs.normal, from.aovs.normal);
     EXPECT_EQ(back_keys, keys);
+
+    // A refining pass's layers: colour, clamped mean and cut-off weight move; the id, AOVs and
+    // key the receiving frame has (its first pass's) stay.
+    RenderResult refined = make();
+    refined.ids[1] = 3, refined.aovs.id[1] = 4, refined.aovs.depth[1] = 5.5f;
+    std::vector<std::uint64_t> kept = {0, 42};
+    bytes.clear();
+    pack_pixel(from, &keys, 1, bytes, PassLayers::refinement);
+    EXPECT_EQ(bytes.size(), 16u + 12u);
+    at = bytes.data();
+    unpack_pixel(refined, &kept, 1, at, bytes.data() + bytes.size(), PassLayers::refinement);
+    EXPECT_EQ(at, bytes.data() + bytes.size());
+    EXPECT_EQ(refined.radiance.rgb, from.radiance.rgb);
+    EXPECT_EQ(refined.clamped.rgb, from.clamped.rgb);
+    EXPECT_EQ(refined.omitted_weight, from.omitted_weight);
+    EXPECT_EQ(refined.ids[1], 3u);
+    EXPECT_EQ(refined.aovs.id[1], 4u);
+    EXPECT_EQ(refined.aovs.depth[1], 5.5f);
+    EXPECT_EQ(kept[1], 42u);
 }
 
 } // namespace

@@ -17,8 +17,9 @@ bool ThreadSchedule::run(FramePass pass, const RenderResult& result, const TileW
     return !progress.cancelled();
 }
 
-void ThreadSchedule::finish(FramePass, RenderResult& result, std::vector<std::uint64_t>* keys) {
-    if (progress_.exchange) progress_.exchange->share(result, keys);
+void ThreadSchedule::finish(FramePass pass, RenderResult& result, std::vector<std::uint64_t>* keys,
+                            const std::vector<std::uint8_t>* only) {
+    if (progress_.exchange) progress_.exchange->gather(pass, result, keys, only);
 }
 
 int progress_steps(const RenderSettings& settings, int width, int height) {
@@ -151,7 +152,7 @@ RenderResult run_frame(const World& world, const PrimarySource& source, PrimaryS
         const bool complete = run_pass(schedule, pass, result, stats, times, [&](const TileRect& r) {
             return grids_tile(world, source, only, r, result);
         });
-        if (complete) schedule.finish(pass, result, nullptr);
+        if (complete) schedule.finish(pass, result, nullptr, only);
         return complete;
     };
 
@@ -162,26 +163,33 @@ RenderResult run_frame(const World& world, const PrimarySource& source, PrimaryS
                 return centres_tile(world, source, r, result, keys, request.observer);
             }))
             return result;
-        schedule.finish(FramePass::centres, result, keys);
+        schedule.finish(FramePass::centres, result, keys, nullptr);
         if (adaptive) {
-            // Rules 1 to 3 (trace/sampling.h) pick the pixels from the first pass's bytes.
-            const Image first = result.bytes();
+            // Rules 1 to 3 (trace/sampling.h) pick the pixels from the first pass's bytes, where
+            // the whole image is: in one process, or on the rank that gathers the others' tiles,
+            // which hands its picks to them (schedule.agree).
+            const bool decides = schedule.decides();
+            const Image first = decides ? result.bytes() : Image();
             result.refined = timed(times.shading, [&] {
-                return adaptive_refinement(first, path_keys, source.sample_ids, settings.samples,
-                                           settings.aa_threshold);
+                return decides ? adaptive_refinement(first, path_keys, source.sample_ids,
+                                                     settings.samples, settings.aa_threshold)
+                               : std::vector<std::uint8_t>();
             });
+            schedule.agree(FramePass::grids, result.refined);
             if (!grids(FramePass::grids, &result.refined)) return result;
             // Rule 4, round by round; the rounds' scans count as shading, each pass times itself.
             const double timed_before = times.primary + times.shading;
             const Stopwatch rounds;
             Image current = first;
-            copy_bytes(result.display(), result.refined, current);
-            spread_refinement(first, current, result.refined, settings.aa_threshold,
-                              [&](const std::vector<std::uint8_t>& next) {
-                                  if (!grids(FramePass::spread, &next)) return false;
-                                  copy_bytes(result.display(), next, current);
-                                  return true;
-                              });
+            if (decides) copy_bytes(result.display(), result.refined, current);
+            spread_refinement(
+                first, current, result.refined, settings.aa_threshold, decides,
+                [&](std::vector<std::uint8_t>& next) { schedule.agree(FramePass::spread, next); },
+                [&](const std::vector<std::uint8_t>& next) {
+                    if (!grids(FramePass::spread, &next)) return false;
+                    if (decides) copy_bytes(result.display(), next, current);
+                    return true;
+                });
             times.shading += rounds.seconds() - (times.primary + times.shading - timed_before);
             return result;
         }

@@ -17,12 +17,6 @@
 
 namespace glint {
 
-enum class FramePass { centres, grids, spread };
-
-template <> struct EnumNames<FramePass> {
-    static constexpr auto names = name_table("centres", "grids", "spread");
-};
-
 inline namespace GLINT_PRECISION {
 
 // A pass's work on one tile; returns the rays it cast.
@@ -36,19 +30,31 @@ class TileSchedule {
     // returns true once all are done, or false when the frame was cancelled (some were not).
     // `result` may be read for a tile once its work is done.
     virtual bool run(FramePass pass, const RenderResult& result, const TileWork& work) = 0;
-    // After a pass's last tile, before anything reads its pixels: several processes give each
-    // other their tiles' pixels here (and `keys`, where given).
-    virtual void finish(FramePass, RenderResult&, std::vector<std::uint64_t>*) {}
+    // After a pass's last tile, before anything reads its pixels: several processes send what
+    // the pass changed (every pixel of their tiles, or those marked in `only`; and `keys`, where
+    // given) to the one that decides.
+    virtual void finish(FramePass, RenderResult&, std::vector<std::uint64_t>*,
+                        const std::vector<std::uint8_t>*) {}
+    // Whether this process holds the whole image after finish, and decides what later passes
+    // refine; the others take its decision from agree().
+    virtual bool decides() const { return true; }
+    // The deciding process's `mask` in every process's.
+    virtual void agree(FramePass, std::vector<std::uint8_t>&) {}
 };
 
 // This process's threads (oneTBB), or with progress.exchange its share of tiles claimed across
-// processes, exchanged after each pass; tiles of the centres and grids passes are counted in
+// processes, gathered on the deciding one after each pass; tiles of the centres and grids passes are counted in
 // progress.tiles_done.
 class ThreadSchedule final : public TileSchedule {
   public:
     explicit ThreadSchedule(const TileProgress& progress) : progress_(progress) {}
     bool run(FramePass pass, const RenderResult& result, const TileWork& work) override;
-    void finish(FramePass pass, RenderResult& result, std::vector<std::uint64_t>* keys) override;
+    void finish(FramePass pass, RenderResult& result, std::vector<std::uint64_t>* keys,
+                const std::vector<std::uint8_t>* only) override;
+    bool decides() const override { return !progress_.exchange || progress_.exchange->decides(); }
+    void agree(FramePass pass, std::vector<std::uint8_t>& mask) override {
+        if (progress_.exchange) progress_.exchange->agree(pass, mask);
+    }
 
   private:
     TileProgress progress_;

@@ -5,6 +5,7 @@
 
 #include "trace/pixel.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace glint {
@@ -56,16 +57,20 @@ GridPixel shade_grid(const World& world, int x, int y, const Hit* hits,
 
 // Rule 4's rounds: while adaptive_spread finds pixels to add (at most kMaxSpreadRounds times),
 // refine(next) puts their grids' means into `current` (it returns false to stop: cancelled),
-// and they are marked in `refined`. Returns how many pixels it added.
-template <class Refine>
+// and they are marked in `refined`. Where the image is spread over processes, only the one that
+// `decides` holds `first` and `current` whole and runs adaptive_spread; agree(next) gives its
+// round to every process (in one process, agree does nothing). Returns how many pixels it added.
+template <class Agree, class Refine>
 std::size_t spread_refinement(const Image& first, const Image& current,
-                              std::vector<std::uint8_t>& refined, float threshold,
-                              const Refine& refine) {
+                              std::vector<std::uint8_t>& refined, float threshold, bool decides,
+                              const Agree& agree, const Refine& refine) {
     std::size_t total = 0;
     for (int round = 0; round < kMaxSpreadRounds; ++round) {
         std::size_t added = 0;
-        const std::vector<std::uint8_t> next =
-            adaptive_spread(first, current, refined, threshold, added);
+        std::vector<std::uint8_t> next;
+        if (decides) next = adaptive_spread(first, current, refined, threshold, added);
+        agree(next);
+        if (!decides) added = static_cast<std::size_t>(std::count(next.begin(), next.end(), 1));
         if (added == 0 || !refine(next)) break;
         for (std::size_t i = 0; i < next.size(); ++i) refined[i] |= next[i];
         total += added;

@@ -7,6 +7,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "trace/names.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
@@ -18,13 +20,21 @@ inline constexpr int kTileSize = 32;
 
 struct RenderResult; // trace/render_result.h
 
+// A frame's passes, in their order (trace/passes.h says what each does).
+enum class FramePass { centres, grids, spread };
+
+template <> struct EnumNames<FramePass> {
+    static constexpr auto names = name_table("centres", "grids", "spread");
+};
+
 // One frame rendered by several processes (docs/DISTRIBUTED.md). Every tile loop of the frame
 // hands its tiles out as the processes ask for them (`claim`: the next tile nobody has taken in
-// this loop, from a counter they share), so that a process that is slowed down takes fewer; after
-// each loop `share` gives every process the others' pixels and starts the next loop's count, so
-// that a pass that reads its neighbours (adaptive antialiasing) reads the whole image, as in one
-// process. A loop's tiles must need nothing but the image before it: trace_frame fuses primary
-// hits and shading into one loop for this (trace/render.cpp).
+// this loop, from a counter they share), so that a process that is slowed down takes fewer. After
+// each loop `gather` sends what the loop changed to the one process that decides (rank 0): it alone
+// holds the whole image, writes it, and decides which pixels a later pass refines (adaptive
+// antialiasing reads neighbours across tile borders); `agree` hands that decision to the others.
+// A loop's tiles must need nothing but the image before it: trace_frame fuses primary hits and
+// shading into one loop for this (trace/render.cpp).
 class TileExchange {
   public:
     explicit TileExchange(int tiles) : mine_(static_cast<std::size_t>(tiles), 0) {}
@@ -35,10 +45,15 @@ class TileExchange {
         mine_[static_cast<std::size_t>(tile)] = 1;
         taken_.fetch_add(1, std::memory_order_relaxed);
     }
-    // After a loop over this process's tiles: their pixels of `result` (colour, cut-off weight,
-    // id) and of `keys` (where given) to every process, the others' into this one's; then the
-    // next loop's tiles are handed out afresh.
-    virtual void share(RenderResult& result, std::vector<std::uint64_t>* keys) = 0;
+    // After a loop over this process's tiles: the pixels it wrote of `result` (every pixel of
+    // them, or only those marked in `only`: each layer the frame keeps) and of `keys` (where
+    // given) to the deciding process; then the next loop's tiles are handed out afresh.
+    virtual void gather(FramePass pass, RenderResult& result, std::vector<std::uint64_t>* keys,
+                        const std::vector<std::uint8_t>* only) = 0;
+    // Whether this process holds the whole image after each gather, and decides.
+    virtual bool decides() const = 0;
+    // The deciding process's `mask` (the pixels the next loop refines) in every process's `mask`.
+    virtual void agree(FramePass pass, std::vector<std::uint8_t>& mask) = 0;
     int tiles_taken() const { return taken_.load(std::memory_order_relaxed); } // all loops
 
   protected:
