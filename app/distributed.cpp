@@ -10,7 +10,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <deque>
 #include <mutex>
+#include <numeric>
 #include <unistd.h>
 #include <thread>
 
@@ -168,14 +170,17 @@ struct TestFaults {
 };
 
 // Tiles claimed from counters on rank 0 (an MPI window, fetch-and-add), one counter a loop so that
-// no loop waits for the others to start it afresh. After each loop every rank sends its tiles'
-// pixels (those the loop wrote: each tile's number, then its pixels' layers, app/rank_records.h)
-// to rank 0, which alone holds the whole image and decides which pixels a later loop refines; that
-// decision goes back to every rank as runs of pixels.
+// no loop waits for the others to start it afresh. Each tile another rank traces is sent to rank 0
+// as soon as it is done (a message of its number and its pixels' layers, app/rank_records.h,
+// tagged with the loop), so that the pixels travel while the ranks trace; rank 0's poller thread
+// receives them into its frame as they come, and at the loop's end takes the rest. Rank 0 alone
+// holds the whole image and decides which pixels a later loop refines; that decision goes back to
+// every rank as runs of pixels.
 class MpiExchange final : public TileExchange {
   public:
     // A frame's loops: centres, grids and at most kMaxSpreadRounds rounds (trace/sampling.h).
     static constexpr int kLoops = 32;
+    static constexpr int kTileTag = 100; // + the loop
 
     explicit MpiExchange(int tiles)
         : TileExchange(tiles), tiles_(tiles), faults_(TestFaults::read()) {
@@ -199,13 +204,23 @@ class MpiExchange final : public TileExchange {
     }
     const PassExchange& after(FramePass pass) const { return figures_[static_cast<int>(pass)]; }
 
+    void open(FramePass pass, RenderResult& result, std::vector<std::uint64_t>* keys,
+              const std::vector<std::uint8_t>* only) override {
+        const std::lock_guard lock(mutex_);
+        if (loop_ >= kLoops) throw std::logic_error("a frame of more loops than the exchange counts");
+        pass_ = pass, result_ = &result, keys_ = keys, only_ = only;
+        // A pass over a mask's pixels (adaptive antialiasing's grids) changes only their colour
+        // and cut-off weight: their ids, AOVs and keys on this rank may be another rank's.
+        layers_ = only ? PassLayers::refinement : PassLayers::all;
+        exhausted_ = false, received_ = 0, sent_ = 0;
+        open_ = true;
+    }
+
     int claim() override {
         if (faults_.slow_ms > 0)
             std::this_thread::sleep_for(std::chrono::milliseconds(faults_.slow_ms));
         const std::lock_guard lock(mutex_);
-        claiming_ = true;
         if (exhausted_) return -1;
-        if (loop_ >= kLoops) throw std::logic_error("a frame of more loops than the exchange counts");
         const std::int64_t one = 1;
         std::int64_t tile = 0;
         MPI_Fetch_and_op(&one, &tile, MPI_INT64_T, 0, loop_, MPI_SUM, window_);
@@ -217,45 +232,49 @@ class MpiExchange final : public TileExchange {
         return static_cast<int>(tile);
     }
 
-    void gather(FramePass pass, RenderResult& result, std::vector<std::uint64_t>* keys,
-                const std::vector<std::uint8_t>* only) override {
+    void traced(int tile) override {
+        if (rank_ == 0) return; // in place
         const Stopwatch watch;
-        {
-            const std::lock_guard lock(mutex_);
-            claiming_ = false; // the poller leaves MPI to this thread until the next loop
-        }
-        PassExchange& figures = figures_[static_cast<int>(pass)];
-        const int width = result.radiance.width, height = result.radiance.height;
-        // A pass over a mask's pixels (adaptive antialiasing's grids) changed only their colour
-        // and cut-off weight: their ids, AOVs and keys on this rank may be another rank's.
-        const PassLayers layers = only ? PassLayers::refinement : PassLayers::all;
-        const auto pixels_of = [&](int tile, const auto& visit) {
-            for_each_pixel_of_tile(width, height, tile, [&](std::size_t i) {
-                if (!only || (*only)[i]) visit(i);
-            });
-        };
-        // Rank 0's own tiles are in place already.
-        std::vector<char> mine;
-        if (rank_ != 0)
-            for (int t = 0; t < tiles_; ++t) {
-                if (!this->mine()[static_cast<std::size_t>(t)]) continue;
-                pack(TileHeader{static_cast<std::uint32_t>(t)}, mine);
-                pixels_of(t, [&](std::size_t i) { pack_pixel(result, keys, i, mine, layers); });
-            }
-        const std::vector<char> all = gather_on_root(mine, figures);
-        const char* at = all.data();
-        const char* const end = at + all.size();
-        while (at < end) {
-            TileHeader header;
-            unpack(header, at, end);
-            if (header.tile >= static_cast<std::uint32_t>(tiles_))
-                throw std::runtime_error("a rank sent a tile the frame does not have");
-            pixels_of(static_cast<int>(header.tile),
-                      [&](std::size_t i) { unpack_pixel(result, keys, i, at, end, layers); });
+        std::vector<char> bytes = spare_buffer();
+        const std::size_t pixel = pixel_bytes(*result_, keys_, layers_);
+        std::size_t size = sizeof(TileHeader);
+        for_each_pixel(tile, [&](std::size_t) { size += pixel; });
+        bytes.resize(size);
+        char* at = bytes.data();
+        pack_to(TileHeader{static_cast<std::uint32_t>(tile)}, at);
+        for_each_pixel(tile, [&](std::size_t i) { pack_pixel(*result_, keys_, i, at, layers_); });
+        const std::lock_guard lock(mutex_);
+        if (bytes.size() > static_cast<std::size_t>(INT_MAX))
+            throw std::runtime_error("a tile of over 2 GiB");
+        Sending& sending = sending_.emplace_back(Sending{std::move(bytes), MPI_REQUEST_NULL});
+        MPI_Isend(sending.bytes.data(), static_cast<int>(sending.bytes.size()), MPI_BYTE, 0,
+                  kTileTag + loop_, MPI_COMM_WORLD, &sending.request);
+        ++sent_;
+        PassExchange& figures = figures_[static_cast<int>(pass_)];
+        figures.sent += sending.bytes.size();
+        retire_sent(false);
+        figures.seconds += watch.seconds();
+    }
+
+    void close() override {
+        const Stopwatch watch;
+        const std::lock_guard lock(mutex_);
+        open_ = false; // the poller leaves MPI to this thread until the next loop
+        PassExchange& figures = figures_[static_cast<int>(pass_)];
+        // How many tiles each rank sent, so that rank 0 knows when it has them all; then rank 0
+        // takes those still on their way, and the others see their sends through.
+        std::vector<int> counts(rank_ == 0 ? static_cast<std::size_t>(ranks_) : 0);
+        MPI_Gather(&sent_, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+        if (rank_ == 0) {
+            figures.received += sizeof(int) * static_cast<std::uint64_t>(ranks_ - 1);
+            const int expected = std::accumulate(counts.begin(), counts.end(), 0);
+            while (received_ < expected) receive(true);
+        } else {
+            figures.sent += sizeof(int);
+            retire_sent(true);
         }
         next_loop();
         ++loop_;
-        exhausted_ = false;
         ++figures.exchanges;
         figures.seconds += watch.seconds();
     }
@@ -264,6 +283,7 @@ class MpiExchange final : public TileExchange {
 
     void agree(FramePass pass, std::vector<std::uint8_t>& mask) override {
         const Stopwatch watch;
+        const std::lock_guard lock(mutex_);
         PassExchange& figures = figures_[static_cast<int>(pass)];
         std::vector<char> bytes;
         if (rank_ == 0) pack_mask(mask, bytes);
@@ -286,55 +306,108 @@ class MpiExchange final : public TileExchange {
     }
 
   private:
-    // Rank 0, while a loop's tiles are claimed: MPI made to progress every 0.2 ms. Where the
-    // window's fetch-and-add travels as messages (over TCP, osc/pt2pt), rank 0 answers another
-    // rank's claim only inside an MPI call, which its tracing threads make only between their own
-    // tiles; over shared memory the claiming rank adds alone and this costs a probe.
+    struct Sending {
+        std::vector<char> bytes;
+        MPI_Request request;
+    };
+
+    // Calls visit(i) for the pixels of `tile` the open loop writes.
+    template <class Visit> void for_each_pixel(int tile, const Visit& visit) const {
+        for_each_pixel_of_tile(result_->radiance.width, result_->radiance.height, tile,
+                               [&](std::size_t i) {
+                                   if (!only_ || (*only_)[i]) visit(i);
+                               });
+    }
+
+    // A buffer of a tile already sent, for the next one (fresh pages cost more than the copy).
+    std::vector<char> spare_buffer() {
+        const std::lock_guard lock(mutex_);
+        if (spare_.empty()) return {};
+        std::vector<char> bytes = std::move(spare_.back());
+        spare_.pop_back();
+        return bytes;
+    }
+
+    // Sends that have completed give their buffers back; with `all`, waits for every one. Under
+    // mutex_.
+    void retire_sent(bool all) {
+        while (!sending_.empty()) {
+            int done = 0;
+            if (all)
+                MPI_Wait(&sending_.front().request, MPI_STATUS_IGNORE), done = 1;
+            else
+                MPI_Test(&sending_.front().request, &done, MPI_STATUS_IGNORE);
+            if (!done) return;
+            spare_.push_back(std::move(sending_.front().bytes));
+            sending_.pop_front();
+        }
+    }
+
+    // Rank 0: one tile's message of the open loop into the frame; with `wait`, waits for it,
+    // else only takes one that has arrived. Returns whether it took one. Under mutex_.
+    bool receive(bool wait) {
+        MPI_Status status;
+        int arrived = 1;
+        const int tag = kTileTag + loop_;
+        if (wait)
+            MPI_Probe(MPI_ANY_SOURCE, tag, MPI_COMM_WORLD, &status);
+        else
+            MPI_Iprobe(MPI_ANY_SOURCE, tag, MPI_COMM_WORLD, &arrived, &status);
+        if (!arrived) return false;
+        const Stopwatch watch;
+        int count = 0;
+        MPI_Get_count(&status, MPI_BYTE, &count);
+        incoming_.resize(static_cast<std::size_t>(count));
+        MPI_Recv(incoming_.data(), count, MPI_BYTE, status.MPI_SOURCE, tag, MPI_COMM_WORLD,
+                 MPI_STATUS_IGNORE);
+        const char* at = incoming_.data();
+        const char* const end = at + incoming_.size();
+        TileHeader header;
+        unpack(header, at, end);
+        if (header.tile >= static_cast<std::uint32_t>(tiles_))
+            throw std::runtime_error("a rank sent a tile the frame does not have");
+        for_each_pixel(static_cast<int>(header.tile),
+                       [&](std::size_t i) { unpack_pixel(*result_, keys_, i, at, end, layers_); });
+        ++received_;
+        PassExchange& figures = figures_[static_cast<int>(pass_)];
+        figures.received += static_cast<std::uint64_t>(count);
+        if (!wait) figures.seconds += watch.seconds();
+        return true;
+    }
+
+    // Rank 0, while a loop is open: takes the tiles that have arrived, and makes MPI progress
+    // every 0.2 ms otherwise. Where the window's fetch-and-add travels as messages (over TCP,
+    // osc/pt2pt), rank 0 answers another rank's claim only inside an MPI call, which its tracing
+    // threads make only between their own tiles.
     void poll() {
         for (;;) {
             std::this_thread::sleep_for(std::chrono::microseconds(200));
             const std::lock_guard lock(mutex_);
             if (stop_) return;
-            if (!claiming_) continue;
-            int flag = 0;
-            MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, MPI_STATUS_IGNORE);
+            if (!open_) continue;
+            while (receive(false)) {
+            }
         }
-    }
-
-    // Every rank's `mine` on rank 0, concatenated in rank order (empty elsewhere), counted.
-    static std::vector<char> gather_on_root(const std::vector<char>& mine, PassExchange& figures) {
-        if (mine.size() > static_cast<std::size_t>(INT_MAX))
-            throw std::runtime_error("a rank's share of the frame is over 2 GiB: use more ranks");
-        const int count = static_cast<int>(mine.size());
-        std::vector<int> counts(rank_ == 0 ? static_cast<std::size_t>(ranks_) : 0),
-            offsets(counts.size());
-        MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
-        long long total = 0;
-        for (std::size_t r = 0; r < counts.size(); ++r) {
-            if (total > INT_MAX) throw std::runtime_error("the frame is over 2 GiB to gather");
-            offsets[r] = static_cast<int>(total), total += counts[r];
-        }
-        std::vector<char> all(static_cast<std::size_t>(total));
-        MPI_Gatherv(mine.data(), count, MPI_BYTE, all.data(), counts.data(), offsets.data(),
-                    MPI_BYTE, 0, MPI_COMM_WORLD);
-        if (rank_ == 0) {
-            figures.received += static_cast<std::uint64_t>(total) +
-                                sizeof(int) * static_cast<std::uint64_t>(ranks_ - 1);
-        } else {
-            figures.sent += mine.size() + sizeof(int);
-        }
-        return all;
     }
 
     int tiles_;
     TestFaults faults_;
     MPI_Win window_ = MPI_WIN_NULL;
-    std::mutex mutex_; // one claim (or poll) at a time (MPI_THREAD_SERIALIZED)
+    std::mutex mutex_; // one MPI call at a time (MPI_THREAD_SERIALIZED); guards what follows
     std::thread poller_;
-    bool claiming_ = false, stop_ = false; // under mutex_
+    bool open_ = false, stop_ = false;
+    FramePass pass_ = FramePass::centres;
+    RenderResult* result_ = nullptr;
+    std::vector<std::uint64_t>* keys_ = nullptr;
+    const std::vector<std::uint8_t>* only_ = nullptr;
+    PassLayers layers_ = PassLayers::all;
     bool exhausted_ = false;
-    int loop_ = 0;     // this frame's loops so far: the counter this loop claims from
+    int loop_ = 0;     // this frame's loops so far: the counter this loop claims from, its tag
     int claimed_ = 0;  // this rank's tiles, all loops
+    int sent_ = 0, received_ = 0; // tile messages this loop
+    std::deque<Sending> sending_;
+    std::vector<std::vector<char>> spare_;
+    std::vector<char> incoming_;
     PassExchange figures_[3];
 };
 

@@ -270,21 +270,42 @@ template <> struct RecordFields<PixelRefinement> {
 // pixels) those a refinement changes.
 enum class PassLayers { all, refinement };
 
-// Pixel i of `result` (and of `keys`, where given): the layers a pass of `layers` wrote.
+// Pixel i of `result` (and of `keys`, where given): the layers a pass of `layers` wrote, at `at`
+// (advanced past them), which has room for them (pixel_bytes).
 inline void pack_pixel(const RenderResult& result, const std::vector<std::uint64_t>* keys,
-                       std::size_t i, std::vector<char>& out, PassLayers layers = PassLayers::all) {
+                       std::size_t i, char*& at, PassLayers layers = PassLayers::all) {
     if (layers == PassLayers::refinement)
-        pack(PixelRefinement{colour_at(result.radiance, i), result.omitted_weight[i]}, out);
+        pack_to(PixelRefinement{colour_at(result.radiance, i), result.omitted_weight[i]}, at);
     else
-        pack(PixelFacts{colour_at(result.radiance, i), result.omitted_weight[i], result.ids[i]},
-             out);
-    if (!result.clamped.empty()) pack(colour_at(result.clamped, i), out);
+        pack_to(PixelFacts{colour_at(result.radiance, i), result.omitted_weight[i], result.ids[i]},
+                at);
+    if (!result.clamped.empty()) pack_to(colour_at(result.clamped, i), at);
     if (layers == PassLayers::refinement) return;
     if (!result.aovs.empty()) {
         const float* n = &result.aovs.normal[3 * i];
-        pack(PixelAov{result.aovs.depth[i], {n[0], n[1], n[2]}, result.aovs.id[i]}, out);
+        pack_to(PixelAov{result.aovs.depth[i], {n[0], n[1], n[2]}, result.aovs.id[i]}, at);
     }
-    if (keys) pack(PixelPathKey{(*keys)[i]}, out);
+    if (keys) pack_to(PixelPathKey{(*keys)[i]}, at);
+}
+
+// The bytes pack_pixel writes for each pixel of `result`.
+inline std::size_t pixel_bytes(const RenderResult& result, const std::vector<std::uint64_t>* keys,
+                               PassLayers layers) {
+    std::size_t bytes = layers == PassLayers::refinement ? sizeof(PixelRefinement)
+                                                         : sizeof(PixelFacts);
+    if (!result.clamped.empty()) bytes += sizeof(PixelColour);
+    if (layers == PassLayers::all && !result.aovs.empty()) bytes += sizeof(PixelAov);
+    if (layers == PassLayers::all && keys) bytes += sizeof(PixelPathKey);
+    return bytes;
+}
+
+// Appends pixel i's layers to `out`.
+inline void pack_pixel(const RenderResult& result, const std::vector<std::uint64_t>* keys,
+                       std::size_t i, std::vector<char>& out, PassLayers layers = PassLayers::all) {
+    const std::size_t start = out.size();
+    out.resize(start + pixel_bytes(result, keys, layers));
+    char* at = out.data() + start;
+    pack_pixel(result, keys, i, at, layers);
 }
 
 // Reads back what pack_pixel wrote into pixel i of `result` (and `keys`).

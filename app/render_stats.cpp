@@ -54,6 +54,7 @@ nlohmann::ordered_json stats_json(const RenderReport& r) {
         {"nodes", accel.node_count()},
         {"nodes_visited_per_ray", static_cast<double>(counts.nodes) / queries},
         {"primitives_tested_per_ray", static_cast<double>(counts.primitives) / queries}};
+    stats["passes"] = r.frame.result.passes;
     if (!r.ranks.empty()) {
         // The per-rank lines of the report; bytes and seconds of the exchanges by kind of pass.
         nlohmann::ordered_json& ranks = stats["ranks"] = nlohmann::ordered_json::array();

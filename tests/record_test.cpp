@@ -96,6 +96,8 @@ TEST(Records, EachPlainRecordsFieldListCoversItsStruct) {
     EXPECT_EQ(field_bytes<PixelColour>(), sizeof(PixelColour));
     EXPECT_EQ(field_bytes<PixelPathKey>(), sizeof(PixelPathKey));
     EXPECT_EQ(field_bytes<PixelRefinement>(), sizeof(PixelRefinement));
+    EXPECT_EQ(field_bytes<PixelFacts>(), sizeof(PixelFacts));
+    EXPECT_EQ(field_bytes<PixelAov>(), sizeof(PixelAov));
     EXPECT_EQ(field_bytes<PassExchange>(), sizeof(PassExchange));
     EXPECT_EQ(field_bytes<TileHeader>(), sizeof(TileHeader));
     EXPECT_EQ(field_bytes<MaskHeader>(), sizeof(MaskHeader));
@@ -152,6 +154,7 @@ TEST(Records, APixelsLayersRoundTripIntoAnotherFrame) {
     from.aovs.normal = {0, 0, 0, 0.6f, 0.8f, 0.0f};
     std::vector<char> bytes;
     pack_pixel(from, &keys, 1, bytes);
+    EXPECT_EQ(bytes.size(), pixel_bytes(from, &keys, PassLayers::all));
     const char* at = bytes.data();
     unpack_pixel(to, &back_keys, 1, at, bytes.data() + bytes.size());
     EXPECT_EQ(at, bytes.data() + bytes.size());
@@ -172,6 +175,7 @@ TEST(Records, APixelsLayersRoundTripIntoAnotherFrame) {
     bytes.clear();
     pack_pixel(from, &keys, 1, bytes, PassLayers::refinement);
     EXPECT_EQ(bytes.size(), 16u + 12u);
+    EXPECT_EQ(bytes.size(), pixel_bytes(from, &keys, PassLayers::refinement));
     at = bytes.data();
     unpack_pixel(refined, &kept, 1, at, bytes.data() + bytes.size(), PassLayers::refinement);
     EXPECT_EQ(at, bytes.data() + bytes.size());

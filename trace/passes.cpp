@@ -17,9 +17,9 @@ bool ThreadSchedule::run(FramePass pass, const RenderResult& result, const TileW
     return !progress.cancelled();
 }
 
-void ThreadSchedule::finish(FramePass pass, RenderResult& result, std::vector<std::uint64_t>* keys,
-                            const std::vector<std::uint8_t>* only) {
-    if (progress_.exchange) progress_.exchange->gather(pass, result, keys, only);
+void ThreadSchedule::finish(FramePass, RenderResult&, std::vector<std::uint64_t>*,
+                            const std::vector<std::uint8_t>*) {
+    if (progress_.exchange) progress_.exchange->close();
 }
 
 int progress_steps(const RenderSettings& settings, int width, int height) {
@@ -115,10 +115,13 @@ TileFigures grids_tile(const World& world, const PrimarySource& source,
 
 // Runs one pass through the schedule: each tile's figures summed into `result` and `stats`, the
 // pass's wall time shared between times.primary and times.shading in the ratio of its tiles'
-// summed times for each. False when cancelled.
+// summed times for each. The pass writes `keys` where given, and only the pixels of `only`
+// where given. False when cancelled.
 template <class Tile>
 bool run_pass(TileSchedule& schedule, FramePass pass, RenderResult& result, PrimaryStats& stats,
-              PhaseTimes& times, const Tile& tile) {
+              PhaseTimes& times, std::vector<std::uint64_t>* keys,
+              const std::vector<std::uint8_t>* only, const Tile& tile) {
+    schedule.open(pass, result, keys, only);
     std::mutex mutex;
     double primary = 0, shading = 0;
     const Stopwatch wall;
@@ -149,21 +152,24 @@ RenderResult run_frame(const World& world, const PrimarySource& source, PrimaryS
     const bool uniform = settings.samples > 1 && settings.antialias == Antialias::uniform;
     const bool adaptive = settings.samples > 1 && !uniform;
     const auto grids = [&](FramePass pass, const std::vector<std::uint8_t>* only) {
-        const bool complete = run_pass(schedule, pass, result, stats, times, [&](const TileRect& r) {
-            return grids_tile(world, source, only, r, result);
-        });
-        if (complete) schedule.finish(pass, result, nullptr, only);
+        const bool complete =
+            run_pass(schedule, pass, result, stats, times, nullptr, only, [&](const TileRect& r) {
+                return grids_tile(world, source, only, r, result);
+            });
+        if (complete) schedule.finish(pass, result, nullptr, only), ++result.passes;
         return complete;
     };
 
     if (!uniform || request.centres_first) {
         std::vector<std::uint64_t> path_keys(adaptive ? result.ids.size() : 0);
         std::vector<std::uint64_t>* keys = adaptive ? &path_keys : nullptr;
-        if (!run_pass(schedule, FramePass::centres, result, stats, times, [&](const TileRect& r) {
-                return centres_tile(world, source, r, result, keys, request.observer);
-            }))
+        if (!run_pass(schedule, FramePass::centres, result, stats, times, keys, nullptr,
+                      [&](const TileRect& r) {
+                          return centres_tile(world, source, r, result, keys, request.observer);
+                      }))
             return result;
         schedule.finish(FramePass::centres, result, keys, nullptr);
+        ++result.passes;
         if (adaptive) {
             // Rules 1 to 3 (trace/sampling.h) pick the pixels from the first pass's bytes, where
             // the whole image is: in one process, or on the rank that gathers the others' tiles,

@@ -30,9 +30,12 @@ class TileSchedule {
     // returns true once all are done, or false when the frame was cancelled (some were not).
     // `result` may be read for a tile once its work is done.
     virtual bool run(FramePass pass, const RenderResult& result, const TileWork& work) = 0;
-    // After a pass's last tile, before anything reads its pixels: several processes send what
-    // the pass changed (every pixel of their tiles, or those marked in `only`; and `keys`, where
-    // given) to the one that decides.
+    // Before a pass's first tile: what its tiles write (`result`, and `keys` where given; only
+    // the pixels marked in `only`, where given), for a schedule that sends tiles elsewhere.
+    virtual void open(FramePass, RenderResult&, std::vector<std::uint64_t>*,
+                      const std::vector<std::uint8_t>*) {}
+    // After a pass's last tile, before anything reads its pixels: several processes have sent
+    // what the pass changed (as open() named it) to the one that decides.
     virtual void finish(FramePass, RenderResult&, std::vector<std::uint64_t>*,
                         const std::vector<std::uint8_t>*) {}
     // Whether this process holds the whole image after finish, and decides what later passes
@@ -49,6 +52,10 @@ class ThreadSchedule final : public TileSchedule {
   public:
     explicit ThreadSchedule(const TileProgress& progress) : progress_(progress) {}
     bool run(FramePass pass, const RenderResult& result, const TileWork& work) override;
+    void open(FramePass pass, RenderResult& result, std::vector<std::uint64_t>* keys,
+              const std::vector<std::uint8_t>* only) override {
+        if (progress_.exchange) progress_.exchange->open(pass, result, keys, only);
+    }
     void finish(FramePass pass, RenderResult& result, std::vector<std::uint64_t>* keys,
                 const std::vector<std::uint8_t>* only) override;
     bool decides() const override { return !progress_.exchange || progress_.exchange->decides(); }

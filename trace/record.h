@@ -39,14 +39,40 @@ template <class R, class Leaf> void for_each_field(R& record, Leaf&& leaf, const
     });
 }
 
-// Appends `record`'s fields to `out`, in their listed order (optionals as a presence byte, then
-// the value when present).
-template <Record R> void pack(const R& record, std::vector<char>& out) {
-    for_each_field(record, [&](const std::string&, const auto& field) {
+// Calls leaf(name, value) for each arithmetic field of `record` as for_each_field does, with each
+// field's own name (not qualified by the records it is in), building no strings: for pack and
+// unpack, which run once per pixel.
+template <class R, class Leaf> void for_each_value(R& record, Leaf&& leaf) {
+    RecordFields<std::remove_const_t<R>>::visit(record, [&](const char* name, auto& field) {
+        using F = std::remove_cvref_t<decltype(field)>;
+        if constexpr (Record<F>)
+            for_each_value(field, leaf);
+        else
+            leaf(name, field);
+    });
+}
+
+// The bytes pack writes for `record`.
+template <Record R> std::size_t packed_size(const R& record) {
+    std::size_t bytes = 0;
+    for_each_value(record, [&](const char*, const auto& field) {
+        using F = std::remove_cvref_t<decltype(field)>;
+        if constexpr (is_optional<F>::value)
+            bytes += 1 + (field ? sizeof(*field) : 0);
+        else
+            bytes += sizeof(field);
+    });
+    return bytes;
+}
+
+// Writes `record`'s fields at `at` (advanced past them), in their listed order (optionals as a
+// presence byte, then the value when present); the caller has made room for packed_size bytes.
+template <Record R> void pack_to(const R& record, char*& at) {
+    for_each_value(record, [&](const char*, const auto& field) {
         using F = std::remove_cvref_t<decltype(field)>;
         const auto put = [&](const auto& value) {
-            const char* bytes = reinterpret_cast<const char*>(&value);
-            out.insert(out.end(), bytes, bytes + sizeof(value));
+            std::memcpy(at, &value, sizeof(value));
+            at += sizeof(value);
         };
         if constexpr (is_optional<F>::value) {
             put(static_cast<char>(field.has_value()));
@@ -58,14 +84,23 @@ template <Record R> void pack(const R& record, std::vector<char>& out) {
     });
 }
 
+// Appends `record`'s fields to `out`, as pack_to writes them.
+template <Record R> void pack(const R& record, std::vector<char>& out) {
+    const std::size_t start = out.size();
+    out.resize(start + packed_size(record));
+    char* at = out.data() + start;
+    pack_to(record, at);
+}
+
 // Reads back what pack wrote, from `at` (advanced past it); throws std::runtime_error when the
 // bytes end first.
 template <Record R> void unpack(R& record, const char*& at, const char* end) {
-    for_each_field(record, [&](const std::string& name, auto& field) {
+    for_each_value(record, [&](const char* name, auto& field) {
         using F = std::remove_cvref_t<decltype(field)>;
         const auto get = [&](auto& value) {
             if (end - at < static_cast<std::ptrdiff_t>(sizeof(value)))
-                throw std::runtime_error("a record from another rank ends before its field " + name);
+                throw std::runtime_error(std::string("a record from another rank ends before its "
+                                                     "field ") + name);
             std::memcpy(&value, at, sizeof(value));
             at += sizeof(value);
         };

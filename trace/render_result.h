@@ -67,6 +67,9 @@ struct RenderResult {
     std::vector<std::uint8_t> refined;
     // Where asked for: what the pixel centres' primary rays hit.
     PrimaryAovs aovs;
+    // The tile loops the frame took: centres, grids, each round of adaptive spreading (on MPI
+    // ranks, one exchange each).
+    int passes = 0;
 
     // The colour a display shows, each channel clamped to [0, 1].
     const FloatImage& display() const { return clamped.empty() ? radiance : clamped; }

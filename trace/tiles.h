@@ -29,9 +29,10 @@ template <> struct EnumNames<FramePass> {
 
 // One frame rendered by several processes (docs/DISTRIBUTED.md). Every tile loop of the frame
 // hands its tiles out as the processes ask for them (`claim`: the next tile nobody has taken in
-// this loop, from a counter they share), so that a process that is slowed down takes fewer. After
-// each loop `gather` sends what the loop changed to the one process that decides (rank 0): it alone
-// holds the whole image, writes it, and decides which pixels a later pass refines (adaptive
+// this loop, from a counter they share), so that a process that is slowed down takes fewer. Each
+// tile a process traces goes to the one process that decides (rank 0) as soon as it is done
+// (`traced`), while the loop goes on; `close` waits for the last. The deciding process alone
+// holds the whole image, writes it, and decides which pixels a later loop refines (adaptive
 // antialiasing reads neighbours across tile borders); `agree` hands that decision to the others.
 // A loop's tiles must need nothing but the image before it: trace_frame fuses primary hits and
 // shading into one loop for this (trace/render.cpp).
@@ -39,18 +40,23 @@ class TileExchange {
   public:
     explicit TileExchange(int tiles) : mine_(static_cast<std::size_t>(tiles), 0) {}
     virtual ~TileExchange() = default;
+    // Before a loop: the frame its tiles write (each layer it keeps), `keys` where the loop
+    // writes them, and `only`: the pixels it refines (null: every pixel of a tile).
+    virtual void open(FramePass pass, RenderResult& result, std::vector<std::uint64_t>* keys,
+                      const std::vector<std::uint8_t>* only) = 0;
     // The loop's next tile, or −1 once every tile of the loop is taken; any thread may ask.
     virtual int claim() = 0;
     void take(int tile) { // claimed here
         mine_[static_cast<std::size_t>(tile)] = 1;
         taken_.fetch_add(1, std::memory_order_relaxed);
     }
-    // After a loop over this process's tiles: the pixels it wrote of `result` (every pixel of
-    // them, or only those marked in `only`: each layer the frame keeps) and of `keys` (where
-    // given) to the deciding process; then the next loop's tiles are handed out afresh.
-    virtual void gather(FramePass pass, RenderResult& result, std::vector<std::uint64_t>* keys,
-                        const std::vector<std::uint8_t>* only) = 0;
-    // Whether this process holds the whole image after each gather, and decides.
+    // After this process traced `tile`: its pixels (those the loop wrote) on their way to the
+    // deciding process. Any thread may call it.
+    virtual void traced(int tile) = 0;
+    // After the loop: every process's pixels are in the deciding one's frame; the next loop's
+    // tiles are handed out afresh.
+    virtual void close() = 0;
+    // Whether this process holds the whole image after each loop, and decides.
     virtual bool decides() const = 0;
     // The deciding process's `mask` (the pixels the next loop refines) in every process's `mask`.
     virtual void agree(FramePass pass, std::vector<std::uint8_t>& mask) = 0;
@@ -143,6 +149,7 @@ void for_each_tile(int width, int height, const TileProgress& progress, const Bo
                     }
                     const TileRect rect = tile_rect(width, height, tile);
                     body(rect.x0, rect.y0, rect.x1, rect.y1);
+                    if (exchange) exchange->traced(tile);
                     if (progress.tiles_done)
                         progress.tiles_done->fetch_add(1, std::memory_order_relaxed);
                 }
