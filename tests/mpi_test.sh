@@ -19,6 +19,9 @@
 #                                           tiles, and the image is the single process's
 #   mpi_test.sh GLINT MPIRUN frames         a sequence's frames spread over 2 ranks are the single
 #                                           process's, file for file
+#   mpi_test.sh GLINT MPIRUN cluster-sim    tools/cluster-sim refuses without root (exit 2), and
+#                                           as root runs 2 ranks over a simulated 1 Gbit/s link
+#                                           end to end, its table printed, nothing left behind
 set -euo pipefail
 glint=$(realpath "$1") mpirun=$2 what=$3
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -163,6 +166,29 @@ frames)
   done
   grep -q "rank 1: frame 4/5" "$work/out.txt" || fail "frame 4 was not rank 1's"
   echo "5 frames over 2 ranks, each the single process's"
+  ;;
+cluster-sim)
+  sim=("/usr/bin/python3" "$root/tools/cluster-sim")
+  if command -v setpriv >/dev/null; then # as nobody: no namespaces to be had
+    set +e
+    (cd / && setpriv --reuid=65534 --regid=65534 --clear-groups "${sim[@]}" --ranks 2 --net 1g \
+      --glint "$glint" -- "$root/scenes/default.json") >"$work/out.txt" 2>"$work/err.txt"
+    code=$?
+    set -e
+    [ "$code" -eq 2 ] && grep -q "needs root" "$work/err.txt" ||
+      fail "without root: exit $code: $(cat "$work/err.txt")"
+  fi
+  if [ "$(id -u)" -ne 0 ] || ! command -v ip >/dev/null; then
+    echo "not root, or no iproute2: the simulated cluster itself is not run"
+    exit 0
+  fi
+  before=$(ip netns list | wc -l)
+  "${sim[@]}" --ranks 2 --net 1g --glint "$glint" --timeout 120 -- \
+    "$root/scenes/default.json" --size 64x48 --mode ray >"$work/out.txt"
+  grep -q '^| 2 | 1 Gbit/s .*|.*s |.*MB.*|.*%.*|.*s (' "$work/out.txt" ||
+    fail "no table row: $(cat "$work/out.txt")"
+  [ "$(ip netns list | wc -l)" -eq "$before" ] || fail "namespaces left: $(ip netns list)"
+  echo "cluster-sim: 2 ranks over a simulated link, the single process's image, nothing left"
   ;;
 *) fail "unknown test $what" ;;
 esac
