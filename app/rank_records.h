@@ -47,7 +47,7 @@ template <> struct RecordFields<PassExchange> {
 struct RankFigures {
     double load = 0, prepare = 0; // scene load and World (structures), seconds
     double gl = 0;                // GL context, shaders, upload, item buffer
-    double trace = 0;             // primary hits and shading, exchanges excluded
+    double trace = 0;             // the passes' primary hits and shading (tiles sent as traced)
     // The exchanges after each kind of pass (trace/tiles.h's FramePass).
     PassExchange centres, grids, spread;
     std::uint64_t tiles = 0; // tiles traced (all passes)

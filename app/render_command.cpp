@@ -371,17 +371,18 @@ int run_render(const RenderArgs& args) {
                         : std::nullopt;
         frame = render_frame(world, settings, &tiles_done, gl ? &*gl : nullptr);
     }
-    const double frame_seconds = phase.lap();
     const int threads =
         args.frame.threads > 0 ? args.frame.threads : tbb::this_task_arena::max_concurrency();
     std::vector<RankFigures> rank_figures;
     if (on_ranks()) {
+        // The passes time their own tracing: the GL context is made while the World is built,
+        // so the frame's wall time less the GL's would not be the tracing.
         const PhaseTimes& t = frame.times;
         RankFigures mine;
         mine.load = load_seconds, mine.prepare = prepare_seconds;
         mine.gl = t.context + t.compile + t.upload + t.raster;
         exchange_figures(*exchange, mine);
-        mine.trace = frame_seconds - mine.gl - mine.exchange().seconds;
+        mine.trace = t.primary + t.shading; // the passes' own wall time: a loop's end not in it
         mine.tiles = static_cast<std::uint64_t>(exchange->tiles_taken());
         mine.rays = frame.result.rays.total();
         rank_figures = combine_ranks(frame, mine, threads);
