@@ -182,8 +182,7 @@ class MpiExchange final : public TileExchange {
     static constexpr int kLoops = 32;
     static constexpr int kTileTag = 100; // + the loop
 
-    explicit MpiExchange(int tiles)
-        : TileExchange(tiles), tiles_(tiles), faults_(TestFaults::read()) {
+    explicit MpiExchange(int tiles) : tiles_(tiles), faults_(TestFaults::read()) {
         std::int64_t* counters = nullptr;
         const MPI_Aint bytes = rank_ == 0 ? kLoops * static_cast<MPI_Aint>(sizeof(std::int64_t)) : 0;
         MPI_Win_allocate(bytes, sizeof(std::int64_t), MPI_INFO_NULL, MPI_COMM_WORLD, &counters,
@@ -273,13 +272,13 @@ class MpiExchange final : public TileExchange {
             figures.sent += sizeof(int);
             retire_sent(true);
         }
-        next_loop();
         ++loop_;
         ++figures.exchanges;
         figures.seconds += watch.seconds();
     }
 
     bool decides() const override { return rank_ == 0; }
+    int tiles_taken() const override { return claimed_; }
 
     void agree(FramePass pass, std::vector<std::uint8_t>& mask) override {
         const Stopwatch watch;
@@ -380,13 +379,19 @@ class MpiExchange final : public TileExchange {
     // osc/pt2pt), rank 0 answers another rank's claim only inside an MPI call, which its tracing
     // threads make only between their own tiles.
     void poll() {
-        for (;;) {
-            std::this_thread::sleep_for(std::chrono::microseconds(200));
-            const std::lock_guard lock(mutex_);
-            if (stop_) return;
-            if (!open_) continue;
-            while (receive(false)) {
+        try {
+            for (;;) {
+                std::this_thread::sleep_for(std::chrono::microseconds(200));
+                const std::lock_guard lock(mutex_);
+                if (stop_) return;
+                if (!open_) continue;
+                while (receive(false)) {
+                }
             }
+        } catch (const std::exception& e) { // a message that is not a tile of this frame
+            std::fprintf(stderr, "glint: error: rank 0: %s\n", e.what());
+            std::fflush(stderr);
+            MPI_Abort(MPI_COMM_WORLD, 1);
         }
     }
 

@@ -30,8 +30,8 @@ struct FrameSettings {
     // the image may differ from ray mode's (by design: it finds what pixel centres miss), so it
     // is off by default; without it adaptive hybrid equals ray mode byte for byte.
     bool aa_sample_ids = false;
-    // One process of several rendering this frame (app/distributed.h): it traces its own tiles
-    // and exchanges pixels with the others after each pass. Null: the whole frame here.
+    // One process of several rendering this frame (app/distributed.h): it traces the tiles it
+    // claims and sends them to rank 0, which holds the whole image. Null: the whole frame here.
     TileExchange* exchange = nullptr;
     // Keep each pixel centre's primary hit (RenderResult::aovs: depth, normal, id) for an EXR.
     bool aovs = false;

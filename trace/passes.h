@@ -5,8 +5,8 @@
 //            adaptive rule picks from the first pass;
 //   spread   the adaptive rule's last part, round by round, until it adds nothing.
 // The tiles of each pass are handed out by a TileSchedule: oneTBB threads in one process, tiles
-// claimed across MPI ranks (with the pixels exchanged after each pass), or the preview's workers,
-// which show each tile as it finishes and stop when the camera moves.
+// claimed across MPI ranks (each traced tile sent to rank 0, which decides), or the preview's
+// workers, which show each tile as it finishes and stop when the camera moves.
 #pragma once
 
 #include "trace/pixel.h"

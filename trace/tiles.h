@@ -38,7 +38,6 @@ template <> struct EnumNames<FramePass> {
 // shading into one loop for this (trace/render.cpp).
 class TileExchange {
   public:
-    explicit TileExchange(int tiles) : mine_(static_cast<std::size_t>(tiles), 0) {}
     virtual ~TileExchange() = default;
     // Before a loop: the frame its tiles write (each layer it keeps), `keys` where the loop
     // writes them, and `only`: the pixels it refines (null: every pixel of a tile).
@@ -46,10 +45,6 @@ class TileExchange {
                       const std::vector<std::uint8_t>* only) = 0;
     // The loop's next tile, or −1 once every tile of the loop is taken; any thread may ask.
     virtual int claim() = 0;
-    void take(int tile) { // claimed here
-        mine_[static_cast<std::size_t>(tile)] = 1;
-        taken_.fetch_add(1, std::memory_order_relaxed);
-    }
     // After this process traced `tile`: its pixels (those the loop wrote) on their way to the
     // deciding process. Any thread may call it.
     virtual void traced(int tile) = 0;
@@ -60,15 +55,8 @@ class TileExchange {
     virtual bool decides() const = 0;
     // The deciding process's `mask` (the pixels the next loop refines) in every process's `mask`.
     virtual void agree(FramePass pass, std::vector<std::uint8_t>& mask) = 0;
-    int tiles_taken() const { return taken_.load(std::memory_order_relaxed); } // all loops
-
-  protected:
-    const std::vector<std::uint8_t>& mine() const { return mine_; } // this loop's, per tile
-    void next_loop() { std::fill(mine_.begin(), mine_.end(), 0); }
-
-  private:
-    std::vector<std::uint8_t> mine_;
-    std::atomic<int> taken_{0};
+    // The tiles this process claimed, all loops (once the frame is done).
+    virtual int tiles_taken() const = 0;
 };
 
 struct TileProgress {
@@ -143,10 +131,7 @@ void for_each_tile(int width, int height, const TileProgress& progress, const Bo
                 for (int index = r.begin(); index != r.end(); ++index) {
                     if (progress.cancelled()) return;
                     int tile = index;
-                    if (exchange) {
-                        if ((tile = exchange->claim()) < 0) continue;
-                        exchange->take(tile);
-                    }
+                    if (exchange && (tile = exchange->claim()) < 0) continue;
                     const TileRect rect = tile_rect(width, height, tile);
                     body(rect.x0, rect.y0, rect.x1, rect.y1);
                     if (exchange) exchange->traced(tile);
