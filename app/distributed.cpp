@@ -201,7 +201,7 @@ class MpiExchange final : public TileExchange {
         MPI_Win_unlock_all(window_);
         MPI_Win_free(&window_);
     }
-    const PassExchange& after(FramePass pass) const { return figures_[static_cast<int>(pass)]; }
+    const RankFigures& figures() const { return figures_; } // its exchanges' fields only
 
     void open(FramePass pass, RenderResult& result, std::vector<std::uint64_t>* keys,
               const std::vector<std::uint8_t>* only) override {
@@ -249,7 +249,7 @@ class MpiExchange final : public TileExchange {
         MPI_Isend(sending.bytes.data(), static_cast<int>(sending.bytes.size()), MPI_BYTE, 0,
                   kTileTag + loop_, MPI_COMM_WORLD, &sending.request);
         ++sent_;
-        PassExchange& figures = figures_[static_cast<int>(pass_)];
+        PassExchange& figures = figures_.after(pass_);
         figures.sent += sending.bytes.size();
         retire_sent(false);
         figures.seconds += watch.seconds();
@@ -259,7 +259,7 @@ class MpiExchange final : public TileExchange {
         const Stopwatch watch;
         const std::lock_guard lock(mutex_);
         open_ = false; // the poller leaves MPI to this thread until the next loop
-        PassExchange& figures = figures_[static_cast<int>(pass_)];
+        PassExchange& figures = figures_.after(pass_);
         // How many tiles each rank sent, so that rank 0 knows when it has them all; then rank 0
         // takes those still on their way, and the others see their sends through.
         std::vector<int> counts(rank_ == 0 ? static_cast<std::size_t>(ranks_) : 0);
@@ -283,7 +283,7 @@ class MpiExchange final : public TileExchange {
     void agree(FramePass pass, std::vector<std::uint8_t>& mask) override {
         const Stopwatch watch;
         const std::lock_guard lock(mutex_);
-        PassExchange& figures = figures_[static_cast<int>(pass)];
+        PassExchange& figures = figures_.after(pass);
         std::vector<char> bytes;
         if (rank_ == 0) pack_mask(mask, bytes);
         std::uint64_t size = bytes.size();
@@ -368,7 +368,7 @@ class MpiExchange final : public TileExchange {
         for_each_pixel(static_cast<int>(header.tile),
                        [&](std::size_t i) { unpack_pixel(*result_, keys_, i, at, end, layers_); });
         ++received_;
-        PassExchange& figures = figures_[static_cast<int>(pass_)];
+        PassExchange& figures = figures_.after(pass_);
         figures.received += static_cast<std::uint64_t>(count);
         if (!wait) figures.seconds += watch.seconds();
         return true;
@@ -413,7 +413,7 @@ class MpiExchange final : public TileExchange {
     std::deque<Sending> sending_;
     std::vector<std::vector<char>> spare_;
     std::vector<char> incoming_;
-    PassExchange figures_[3];
+    RankFigures figures_; // centres, grids, spread: what the exchanges after each moved
 };
 
 } // namespace
@@ -423,9 +423,8 @@ std::unique_ptr<TileExchange> make_exchange(int tiles) {
 }
 
 void exchange_figures(const TileExchange& exchange, RankFigures& figures) {
-    const auto& mpi = static_cast<const MpiExchange&>(exchange);
-    for (const FramePass pass : {FramePass::centres, FramePass::grids, FramePass::spread})
-        figures.after(pass) = mpi.after(pass);
+    const RankFigures& mine = static_cast<const MpiExchange&>(exchange).figures();
+    figures.centres = mine.centres, figures.grids = mine.grids, figures.spread = mine.spread;
 }
 
 std::vector<std::vector<char>> gather_bytes(const std::vector<char>& mine) {

@@ -10,8 +10,8 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <stdexcept>
 #include <optional>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -297,15 +297,6 @@ inline std::size_t pixel_bytes(const RenderResult& result, const std::vector<std
     if (layers == PassLayers::all && !result.aovs.empty()) bytes += sizeof(PixelAov);
     if (layers == PassLayers::all && keys) bytes += sizeof(PixelPathKey);
     return bytes;
-}
-
-// Appends pixel i's layers to `out`.
-inline void pack_pixel(const RenderResult& result, const std::vector<std::uint64_t>* keys,
-                       std::size_t i, std::vector<char>& out, PassLayers layers = PassLayers::all) {
-    const std::size_t start = out.size();
-    out.resize(start + pixel_bytes(result, keys, layers));
-    char* at = out.data() + start;
-    pack_pixel(result, keys, i, at, layers);
 }
 
 // Reads back what pack_pixel wrote into pixel i of `result` (and `keys`).

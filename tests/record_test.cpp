@@ -136,6 +136,15 @@ TEST(Records, AMaskRoundTripsAsRuns) {
     EXPECT_THROW(unpack_mask(at, bad.data() + bad.size()), std::runtime_error);
 }
 
+// Pixel i's layers appended to `out`, as a rank's message holds them.
+void pack_pixel(const RenderResult& result, const std::vector<std::uint64_t>* keys, std::size_t i,
+                std::vector<char>& out, PassLayers layers = PassLayers::all) {
+    const std::size_t start = out.size();
+    out.resize(start + pixel_bytes(result, keys, layers));
+    char* at = out.data() + start;
+    glint::pack_pixel(result, keys, i, at, layers);
+}
+
 // A frame's pixel, with every layer a frame may keep (the clamped mean, the AOVs, the path key),
 // packed from one result and read into another: each layer lands in its place.
 TEST(Records, APixelsLayersRoundTripIntoAnotherFrame) {
