@@ -31,8 +31,7 @@ class RefineJob::PreviewSchedule final : public TileSchedule {
         for (std::thread& w : workers) w.join();
         return !cancel_.load(std::memory_order_relaxed);
     }
-    void finish(FramePass pass, RenderResult& result, std::vector<std::uint64_t>*,
-                const std::vector<std::uint8_t>*) override {
+    void finish(FramePass pass, RenderResult& result) override {
         job_.pass_done(pass, result);
     }
 

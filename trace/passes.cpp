@@ -17,8 +17,7 @@ bool ThreadSchedule::run(FramePass pass, const RenderResult& result, const TileW
     return !progress.cancelled();
 }
 
-void ThreadSchedule::finish(FramePass, RenderResult&, std::vector<std::uint64_t>*,
-                            const std::vector<std::uint8_t>*) {
+void ThreadSchedule::finish(FramePass, RenderResult&) {
     if (progress_.exchange) progress_.exchange->close();
 }
 
@@ -156,7 +155,7 @@ RenderResult run_frame(const World& world, const PrimarySource& source, PrimaryS
             run_pass(schedule, pass, result, stats, times, nullptr, only, [&](const TileRect& r) {
                 return grids_tile(world, source, only, r, result);
             });
-        if (complete) schedule.finish(pass, result, nullptr, only), ++result.passes;
+        if (complete) schedule.finish(pass, result), ++result.passes;
         return complete;
     };
 
@@ -168,7 +167,7 @@ RenderResult run_frame(const World& world, const PrimarySource& source, PrimaryS
                           return centres_tile(world, source, r, result, keys, request.observer);
                       }))
             return result;
-        schedule.finish(FramePass::centres, result, keys, nullptr);
+        schedule.finish(FramePass::centres, result);
         ++result.passes;
         if (adaptive) {
             // Rules 1 to 3 (trace/sampling.h) pick the pixels from the first pass's bytes, where

@@ -36,8 +36,7 @@ class TileSchedule {
                       const std::vector<std::uint8_t>*) {}
     // After a pass's last tile, before anything reads its pixels: several processes have sent
     // what the pass changed (as open() named it) to the one that decides.
-    virtual void finish(FramePass, RenderResult&, std::vector<std::uint64_t>*,
-                        const std::vector<std::uint8_t>*) {}
+    virtual void finish(FramePass, RenderResult&) {}
     // Whether this process holds the whole image after finish, and decides what later passes
     // refine; the others take its decision from agree().
     virtual bool decides() const { return true; }
@@ -56,8 +55,7 @@ class ThreadSchedule final : public TileSchedule {
               const std::vector<std::uint8_t>* only) override {
         if (progress_.exchange) progress_.exchange->open(pass, result, keys, only);
     }
-    void finish(FramePass pass, RenderResult& result, std::vector<std::uint64_t>* keys,
-                const std::vector<std::uint8_t>* only) override;
+    void finish(FramePass pass, RenderResult& result) override;
     bool decides() const override { return !progress_.exchange || progress_.exchange->decides(); }
     void agree(FramePass pass, std::vector<std::uint8_t>& mask) override {
         if (progress_.exchange) progress_.exchange->agree(pass, mask);
