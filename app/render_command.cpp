@@ -359,6 +359,7 @@ int run_render(const RenderArgs& args) {
     settings.exchange = exchange.get();
     settings.aovs = wants(job.aovs, Aov::depth) || wants(job.aovs, Aov::normal) ||
                     wants(job.aovs, Aov::id);
+    settings.ids = exchange != nullptr; // the ranks' pixels carry their ids; nothing else reads them
     std::atomic<int> tiles_done{0};
     Frame frame;
     {

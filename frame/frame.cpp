@@ -32,9 +32,10 @@ Frame render_frame(const World& world, const FrameSettings& settings, std::atomi
     } else {
         draw_item_buffers(world, settings, frame);
     }
-    frame.result =
-        trace_frame(world, primary_source(frame, settings.resolve), frame.primary_stats,
-                    settings.progress(tiles_done), frame.times, settings.aovs);
+    FrameRequest request;
+    request.aovs = settings.aovs, request.ids = settings.ids;
+    frame.result = trace_frame(world, primary_source(frame, settings.resolve), frame.primary_stats,
+                               settings.progress(tiles_done), frame.times, request);
     return frame;
 }
 

@@ -29,6 +29,7 @@ namespace {
 namespace fs = std::filesystem;
 using testing::kShippedScenes;
 using testing::shipped;
+using testing::with_aovs;
 
 RenderResult ray_render(const Scene& scene, Precision precision = Precision::f32,
                         bool aovs = false) {
@@ -221,7 +222,7 @@ TEST_P(AovScene, AovsAreTheTracersHitAtEachPixelCentre) {
         const World world(scene);
         PrimaryStats unused;
         PhaseTimes times;
-        const RenderResult result = trace_frame(world, {}, unused, {}, times, true);
+        const RenderResult result = trace_frame(world, {}, unused, {}, times, with_aovs());
         int hits = 0;
         for (int y = 0; y < 48; ++y) {
             for (int x = 0; x < 64; ++x) {

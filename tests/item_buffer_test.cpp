@@ -247,7 +247,7 @@ TEST_P(GlTest, AdaptiveHybridFindsAnObjectThatFallsBetweenPixelCentres) {
                                Resolve::exact, 0};
         const Frame ray = render_frame(world, settings);
         EXPECT_EQ(std::count(ray.result.refined.begin(), ray.result.refined.end(), 1), 0);
-        EXPECT_EQ(ray.result.ids, FrameVector<std::uint32_t>(16 * 16, 0)) << "a centre saw it";
+        EXPECT_EQ(ray.result.ids, FrameLayer<std::uint32_t>(16 * 16, 0)) << "a centre saw it";
         settings.mode = Mode::hybrid;
         EXPECT_EQ(render_frame(world, settings).result.bytes().rgb, ray.result.bytes().rgb);
         settings.aa_sample_ids = true;

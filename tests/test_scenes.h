@@ -3,6 +3,7 @@
 
 #include "io/json_loader.h"
 #include "io/load_scene.h"
+#include "trace/passes.h"
 #include "trace/transform.h"
 #include "trace/world.h"
 
@@ -43,6 +44,13 @@ inline Scene scene_at_origin(const std::string& objects, const std::string& mate
                            materials + R"(, "lights": )" + lights + R"(, "objects": )" + objects +
                            extra + "}",
                        "test.json");
+}
+
+// A frame that keeps its pixel centres' primary hits (RenderResult::aovs) besides the image.
+inline FrameRequest with_aovs() {
+    FrameRequest request;
+    request.aovs = true;
+    return request;
 }
 
 // A gtest parameter name from a sentence: letters and digits kept, everything else '_'.

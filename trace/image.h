@@ -32,7 +32,6 @@ template <class T> struct FrameAllocator : std::allocator<T> {
     T* allocate(std::size_t n) { return static_cast<T*>(allocate_frame_storage(n * sizeof(T))); }
     void deallocate(T* p, std::size_t n) noexcept { free_frame_storage(p, n * sizeof(T)); }
 };
-template <class T> using FrameVector = std::vector<T, FrameAllocator<T>>;
 
 // An allocator whose containers leave new elements uninitialised (resize without a value): a
 // frame's pixels are all written by its passes, in parallel, so their pages are first touched
@@ -48,6 +47,10 @@ template <class T> struct UninitialisedAllocator : FrameAllocator<T> {
         ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
     }
 };
+
+// A frame's per-pixel layer (cut-off weights, ids): sized without values, because the frame's
+// passes write every pixel, in parallel tiles, which is where its pages are first touched.
+template <class T> using FrameLayer = std::vector<T, UninitialisedAllocator<T>>;
 
 // A w×h image of RGB pixels (Image, FloatImage) whose values its UninitialisedAllocator leaves
 // unset.

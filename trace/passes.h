@@ -67,6 +67,9 @@ class ThreadSchedule final : public TileSchedule {
 
 struct FrameRequest {
     bool aovs = false;          // keep each pixel centre's primary hit (RenderResult::aovs)
+    // Keep each pixel's object id (RenderResult::ids): what compare, tradeoff and the MPI
+    // exchange read. A plain render reads none, and leaves the layer out.
+    bool ids = true;
     bool centres_first = false; // uniform grids too start with a centres pass (a first look)
     CentreObserver* observer = nullptr;
 };

@@ -11,7 +11,7 @@ inline namespace GLINT_PRECISION {
 
 RenderResult shade_image(const World& world, const std::vector<Hit>& primary,
                          const TileProgress& progress, std::vector<std::uint64_t>* path_keys) {
-    RenderResult result = blank_result(world.camera(), 1, false);
+    RenderResult result = blank_result(world.camera(), 1, {});
     if (path_keys) path_keys->assign(primary.size(), 0);
     std::mutex counts_mutex;
     for_each_tile(result.radiance.width, result.radiance.height, progress,
@@ -40,10 +40,9 @@ std::vector<std::uint32_t> object_ids(const std::vector<Hit>& primary) {
 }
 
 RenderResult trace_frame(const World& world, const PrimarySource& source, PrimaryStats& stats,
-                         const TileProgress& progress, PhaseTimes& times, bool aovs) {
+                         const TileProgress& progress, PhaseTimes& times,
+                         const FrameRequest& request) {
     ThreadSchedule schedule(progress);
-    FrameRequest request;
-    request.aovs = aovs;
     return run_frame(world, source, stats, schedule, times, request);
 }
 

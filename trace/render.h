@@ -23,9 +23,10 @@ RenderResult shade_image(const World& world, const std::vector<Hit>& primary,
 // processes, progress.exchange): trace/passes.h's run_frame with a ThreadSchedule, primary hits
 // from `source` (frame/frame.h draws the item buffer before it in hybrid mode), each phase timed
 // into `times`.
-// With `aovs`, also keeps each pixel centre's primary hit (RenderResult::aovs).
+// `request` names the layers it keeps besides the image (the AOVs, the ids).
 RenderResult trace_frame(const World& world, const PrimarySource& source, PrimaryStats& stats,
-                         const TileProgress& progress, PhaseTimes& times, bool aovs = false);
+                         const TileProgress& progress, PhaseTimes& times,
+                         const FrameRequest& request = {});
 
 // Ray mode in one call: primary hits by ray casting, then shading, with the scene's samples.
 RenderResult render(const World& world, const TileProgress& progress = {});

@@ -59,10 +59,11 @@ struct RenderResult {
     RayCounts rays;
     // The summed path weights of the reflected and transmitted rays that max_depth or
     // min_reflectivity kept from being cast, 0 where none was (trace/cutoff.h).
-    FrameVector<float> omitted_weight;
+    FrameLayer<float> omitted_weight;
     // The primary hit's object index + 1, 0 for background: of the pixel centre, or with an
-    // N×N grid of its sample (N/2, N/2) (the centre when N is odd).
-    FrameVector<std::uint32_t> ids;
+    // N×N grid of its sample (N/2, N/2) (the centre when N is odd). Empty where the frame was
+    // not asked for them (FrameRequest::ids: `glint render` reads none).
+    FrameLayer<std::uint32_t> ids;
     // Adaptive antialiasing only: 1 where the pixel took its N×N grid, 0 where its centre.
     std::vector<std::uint8_t> refined;
     // Where asked for: what the pixel centres' primary rays hit.
