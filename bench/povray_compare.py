@@ -265,24 +265,33 @@ def run_glint(glint, nff, png, width, height, threads, mode):
     return {"wall": wall, "startup": startup, "trace": wall - startup}
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+def peer_command_line(doc, peer, keep_help):
+    """The command line of a comparison with another renderer (this one, bench/tachyon_compare.py):
+    NFF files, --size, --threads, --runs, --glint, --keep, --markdown; checked that `peer` and
+    glint are there. Returns the arguments, the width and height, and the working directory."""
+    ap = argparse.ArgumentParser(description=doc.split("\n")[0])
     ap.add_argument("nff", nargs="+")
     ap.add_argument("--size", default="1920x1080")
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--glint", default=os.path.join(ROOT, "build", "app", "glint"))
-    ap.add_argument("--keep", help="keep the .pov files and images in this directory, and a map "
-                    "of where glint's ray-mode image differs from POV-Ray's by > 8/255")
+    ap.add_argument("--keep", help=keep_help)
     ap.add_argument("--markdown", action="store_true", help="print one table row per scene")
     args = ap.parse_args()
-    if not shutil.which("povray"):
-        sys.exit("povray is not installed: apt-get install povray")
+    if not shutil.which(peer):
+        sys.exit("%s is not installed: apt-get install %s" % (peer, peer))
     if not os.access(args.glint, os.X_OK):
         sys.exit("%s is not built: ./glint build" % args.glint)
     width, height = (int(v) for v in args.size.split("x"))
-    work = args.keep or tempfile.mkdtemp(prefix="glint-pov-")
+    work = args.keep or tempfile.mkdtemp(prefix="glint-%s-" % peer)
     os.makedirs(work, exist_ok=True)
+    return args, width, height, work
+
+
+def main():
+    args, width, height, work = peer_command_line(
+        __doc__, "povray", "keep the .pov files and images in this directory, and a map of where "
+        "glint's ray-mode image differs from POV-Ray's by > 8/255")
     for nff in args.nff:
         name = os.path.splitext(os.path.basename(nff))[0]
         pov = os.path.join(work, name + ".pov")

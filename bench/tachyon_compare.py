@@ -27,7 +27,6 @@ much the images agree.
 
 Needs tachyon (`apt-get install tachyon`) and a built glint (`./glint build`).
 """
-import argparse
 import json
 import math
 import os
@@ -36,11 +35,10 @@ import shutil
 import statistics
 import subprocess
 import sys
-import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from povray_compare import read_png, tokens_of, write_png  # noqa: E402
+from povray_compare import peer_command_line, read_png, tokens_of, write_png  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -148,23 +146,9 @@ def run_glint(glint, nff, png, width, height, threads):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("nff", nargs="+")
-    ap.add_argument("--size", default="1920x1080")
-    ap.add_argument("--threads", type=int, default=2)
-    ap.add_argument("--runs", type=int, default=3)
-    ap.add_argument("--glint", default=os.path.join(ROOT, "build", "app", "glint"))
-    ap.add_argument("--keep", help="keep the scenes and images in this directory (Tachyon's as "
-                    "a mirrored PNG)")
-    ap.add_argument("--markdown", action="store_true", help="print one table row per scene")
-    args = ap.parse_args()
-    if not shutil.which("tachyon"):
-        sys.exit("tachyon is not installed: apt-get install tachyon")
-    if not os.access(args.glint, os.X_OK):
-        sys.exit("%s is not built: ./glint build" % args.glint)
-    width, height = (int(v) for v in args.size.split("x"))
-    work = args.keep or tempfile.mkdtemp(prefix="glint-tachyon-")
-    os.makedirs(work, exist_ok=True)
+    args, width, height, work = peer_command_line(
+        __doc__, "tachyon", "keep the scenes and images in this directory (Tachyon's as a "
+        "mirrored PNG)")
     if args.markdown:
         print("| scene | Tachyon wall (s) | glint ray wall (s) | glint / Tachyon | Tachyon trace (s) "
               "| glint frame (s) | silhouettes agree | mean difference inside |")
