@@ -35,8 +35,8 @@ struct FrameSettings {
     TileExchange* exchange = nullptr;
     // Keep each pixel centre's primary hit (RenderResult::aovs: depth, normal, id) for an EXR.
     bool aovs = false;
-    // Keep each pixel's object id (RenderResult::ids), which compare, tradeoff, the Python
-    // module and the MPI exchange read; `glint render` alone does without.
+    // Keep each pixel's object id (RenderResult::ids), which compare and tradeoff (from the
+    // command line or Python) and the MPI exchange read; `glint render` alone does without.
     bool ids = true;
     // Set from another thread to stop the frame between tiles (the Python module's Ctrl-C): the
     // frame returned is then incomplete, and its caller says so (frame_cancelled). Null: never.
