@@ -359,7 +359,7 @@ int run_render(const RenderArgs& args) {
     settings.exchange = exchange.get();
     settings.aovs = wants(job.aovs, Aov::depth) || wants(job.aovs, Aov::normal) ||
                     wants(job.aovs, Aov::id);
-    settings.ids = exchange != nullptr; // the ranks' pixels carry their ids; nothing else reads them
+    settings.ids = false; // nothing here reads them (ranks keep them for the exchange)
     std::atomic<int> tiles_done{0};
     Frame frame;
     {

@@ -36,7 +36,8 @@ struct FrameSettings {
     // Keep each pixel centre's primary hit (RenderResult::aovs: depth, normal, id) for an EXR.
     bool aovs = false;
     // Keep each pixel's object id (RenderResult::ids), which compare and tradeoff (from the
-    // command line or Python) and the MPI exchange read; `glint render` alone does without.
+    // command line or Python) read; `glint render` does without. A frame on MPI ranks keeps
+    // them whatever this says: its exchange sends them.
     bool ids = true;
     // Set from another thread to stop the frame between tiles (the Python module's Ctrl-C): the
     // frame returned is then incomplete, and its caller says so (frame_cancelled). Null: never.
