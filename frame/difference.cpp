@@ -78,8 +78,8 @@ RenderedSide::RenderedSide(Side side, std::shared_ptr<const World> world,
     : side_(std::move(side)), world_(std::move(world)),
       ids_(side_.frame.mode == Mode::hybrid ? std::move(ids) : nullptr) {
     const PrimarySource source{ids_.get(), side_.frame.resolve};
-    frame_.result = trace_frame(*world_, source, frame_.primary_stats, {side_.frame.threads},
-                                frame_.times);
+    frame_.result =
+        trace_frame(*world_, source, frame_.primary_stats, {side_.frame.threads}, frame_.times);
 }
 
 RenderedSide::~RenderedSide() = default;

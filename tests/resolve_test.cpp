@@ -136,7 +136,8 @@ TEST_P(ResolveTest, AFrameFromSpoiledIdsIsRayModesFrame) {
             source = {nullptr, Resolve::exact, &grid};
         PrimaryStats stats, unused;
         PhaseTimes times;
-        const RenderResult hybrid = trace_frame(world, source, stats, {}, times, testing::with_aovs());
+        const RenderResult hybrid =
+            trace_frame(world, source, stats, {}, times, testing::with_aovs());
         const RenderResult ray = trace_frame(world, {}, unused, {}, times, testing::with_aovs());
         const std::string what = std::to_string(samples) + "x" + std::to_string(samples) + " " +
                                  std::string(name_of(antialias));
