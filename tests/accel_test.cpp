@@ -423,6 +423,33 @@ TEST(Accel, BvhDepthStaysWithinTheTraversalStackWhereSahPeelsOneObjectALevel) {
     EXPECT_GT(depth, kSahDepth) << "no longer the adversarial case this test is about";
 }
 
+// kObjectLeaves lets the SAH choose every leaf of a scene's objects, a level costing half an
+// object's test: eight boxes far apart each get a leaf of their own (leaves of up to four were
+// forced until round three), and two that nearly coincide share one, which only the level's
+// cost decides. A mesh's leaf of one block (kTriangleLeaves) is never split.
+TEST(Accel, TheSahChoosesObjectLeavesAndAMeshBlockStaysWhole) {
+    const auto leaf_sizes = [](const BinaryBvh& bvh) {
+        std::vector<std::uint32_t> sizes;
+        for (const BvhNode& n : bvh.nodes())
+            if (n.count > 0) sizes.push_back(n.count);
+        return sizes;
+    };
+    std::vector<Bounds> apart;
+    for (int i = 0; i < 8; ++i) {
+        const float x = 10.0f * static_cast<float>(i);
+        apart.push_back({Vec3(x, 0.0f, 0.0f), Vec3(x + 1.0f, 1.0f, 1.0f)});
+    }
+    EXPECT_EQ(leaf_sizes(BinaryBvh(apart)), std::vector<std::uint32_t>(8, 1));
+
+    const std::vector<Bounds> coinciding = {{Vec3(0.0f), Vec3(1.0f)}, {Vec3(0.01f), Vec3(1.01f)}};
+    EXPECT_EQ(leaf_sizes(BinaryBvh(coinciding)), std::vector<std::uint32_t>{2});
+    EXPECT_EQ(leaf_sizes(BinaryBvh(coinciding, {1, 0.0f})), std::vector<std::uint32_t>(2, 1))
+        << "without the level's cost, the split is cheaper: the first case tests the cost";
+
+    apart.resize(4);
+    EXPECT_EQ(leaf_sizes(BinaryBvh(apart, kTriangleLeaves)), std::vector<std::uint32_t>{4});
+}
+
 // A mesh's own BVH (eight-wide, triangles in blocks in leaf order) returns exactly what testing every
 // triangle in index order returns: the nearest t, and on equal t the lower triangle index, so
 // the answer does not depend on the order the tree offers its leaves in. The mesh is a grid of

@@ -15,14 +15,16 @@ constexpr std::uint32_t kParallelBelow = 4096; // subtrees smaller than this are
 
 struct Builder {
     std::span<const Bounds> bounds;
-    std::uint32_t block; // items a leaf tests together (BinaryBvh's constructor)
+    LeafCosts costs;
     std::vector<Vec3> centres;
     std::vector<std::uint32_t>& items;
     std::vector<BvhNode>& nodes;
     std::atomic<std::uint32_t> next_node{1};
 
     // What the SAH counts a leaf of n items as: its blocks.
-    Real tests(std::uint32_t n) const { return static_cast<Real>((n + block - 1) / block); }
+    Real tests(std::uint32_t n) const {
+        return static_cast<Real>((n + costs.block - 1) / costs.block);
+    }
 
     void leaf(BvhNode& node, std::uint32_t begin, std::uint32_t end) {
         node.first = begin;
@@ -41,9 +43,7 @@ struct Builder {
         }
         node.bounds = box;
         const std::uint32_t count = end - begin;
-        // Up to 4 items a leaf whatever the SAH says: measured 1.15× more rays/s on a 10⁶-
-        // triangle mesh than leaves of 2 (fewer nodes to fetch; bench/accel_bench.cpp, Mesh*).
-        if (count <= 4) return leaf(node, begin, end);
+        if (count <= costs.block) return leaf(node, begin, end);
         if (depth >= kSahDepth) return median_split(index, begin, end, depth, centroid_box);
 
         // Binned SAH over the centroids (Wald 2007): cost of a split ∝ A_left·N_left +
@@ -83,10 +83,10 @@ struct Builder {
                 if (cost < best_cost) best_cost = cost, best_axis = axis, best_split = b;
             }
         }
-        // A leaf costs one test per block; a split its children's expected tests (the box tests of
-        // the split are left out, which favours splitting; leaves stay small either way).
+        // A leaf costs one test per block; a split its children's expected tests and the level.
         const Real leaf_cost = box.area() * tests(count);
-        if (count <= kMaxLeafSize && (best_axis < 0 || best_cost >= leaf_cost))
+        if (count <= kMaxLeafSize &&
+            (best_axis < 0 || best_cost + costs.level * box.area() >= leaf_cost))
             return leaf(node, begin, end);
         std::uint32_t middle;
         if (best_axis >= 0) {
@@ -157,12 +157,12 @@ BinaryBvh BinaryBvh::refitted(std::span<const Bounds> items) const {
     return moved;
 }
 
-BinaryBvh::BinaryBvh(std::span<const Bounds> item_bounds, std::uint32_t block) {
+BinaryBvh::BinaryBvh(std::span<const Bounds> item_bounds, LeafCosts costs) {
     if (item_bounds.empty()) return;
     items_.resize(item_bounds.size());
     for (std::uint32_t i = 0; i < items_.size(); ++i) items_[i] = i;
     nodes_.resize(2 * item_bounds.size()); // a binary tree with n leaves at most has 2n − 1 nodes
-    Builder builder{item_bounds, block, {}, items_, nodes_};
+    Builder builder{item_bounds, costs, {}, items_, nodes_};
     builder.centres.reserve(item_bounds.size());
     for (const Bounds& b : item_bounds) builder.centres.push_back(b.centre());
     builder.build(0, 0, static_cast<std::uint32_t>(item_bounds.size()), 0);

@@ -26,12 +26,28 @@ inline constexpr int kMaxBvhDepth = 128;
 inline constexpr int kSahDepth = 64;
 static_assert(kSahDepth + 32 + 1 <= kMaxBvhDepth);
 
+// What the SAH weighs a tree's leaves and levels by (BinaryBvh's and WideBvh's constructors).
+struct LeafCosts {
+    // Items a leaf tests together (a mesh's triangles, four to a SIMD block): the SAH counts a
+    // leaf of n items as ⌈n / block⌉ tests, which favours full blocks, and a leaf of one block
+    // is never split.
+    std::uint32_t block = 1;
+    // One more level, in those tests per unit of the node's area: a node is split only where
+    // its children's expected tests save more than this.
+    Real level = 0;
+};
+
+// A scene's objects, tested one at a time: the SAH decides every leaf, a level costing half an
+// object's test. Forcing leaves of up to 4 objects, as the mesh's blocks are (the rule until
+// round three), made 1080p ray frames 1.2–1.7× slower where long or overlapping objects share
+// boxes (lattice-6, tree-11, rings-7, gears-4) and none faster (docs/PERFORMANCE.md); without
+// the level's cost, shells-2's nested spheres were split apart and 1.5× slower.
+inline constexpr LeafCosts kObjectLeaves{1, 0.5_r};
+
 class BinaryBvh {
   public:
     BinaryBvh() = default;
-    // `block`: how many items a leaf tests together (a mesh's triangles, four to a SIMD block).
-    // The SAH then counts a leaf of n items as ⌈n / block⌉ tests, which favours full blocks.
-    explicit BinaryBvh(std::span<const Bounds> items, std::uint32_t block = 1);
+    explicit BinaryBvh(std::span<const Bounds> items, LeafCosts costs = kObjectLeaves);
 
     // This tree over new boxes of the same items: each node's box the union of its items' or
     // children's. Conservative as a fresh build is; only the SAH's choice of splits may be worse.

@@ -128,9 +128,9 @@ void align_leaves(std::vector<WideBvhNode>& nodes, std::vector<std::uint32_t>& i
 
 } // namespace
 
-WideBvh::WideBvh(std::span<const Bounds> item_bounds, std::uint32_t leaf_alignment) {
+WideBvh::WideBvh(std::span<const Bounds> item_bounds, LeafCosts costs) {
     if (item_bounds.empty()) return;
-    const BinaryBvh tree(item_bounds, leaf_alignment);
+    const BinaryBvh tree(item_bounds, costs);
     items_ = tree.items();
     nodes_.push_back(empty_node());
     const BvhNode& root = tree.nodes()[0];
@@ -138,7 +138,7 @@ WideBvh::WideBvh(std::span<const Bounds> item_bounds, std::uint32_t leaf_alignme
         set_lane(nodes_[0], 0, root.bounds, root.first, root.count);
     else
         collapse(tree, leaf_counts(tree), 0, 0, nodes_);
-    if (leaf_alignment > 1) align_leaves(nodes_, items_, leaf_alignment);
+    if (costs.block > 1) align_leaves(nodes_, items_, costs.block);
 }
 
 WideBvh WideBvh::refitted(std::span<const Bounds> items) const {

@@ -290,11 +290,11 @@ enter_avx512(const PacketRays& packet, const WideBvhNode& n, int k, std::uint32_
 class WideBvh {
   public:
     WideBvh() = default;
-    // `leaf_alignment`: every leaf's first slot a multiple of it, the slots between leaves
-    // padding (kEmptyChild in items()), so that a user may keep its items in blocks of that many
-    // side by side (a mesh's triangles, four to a SIMD block: trace/shapes/mesh.h); the build
-    // then counts a leaf's cost in those blocks (BinaryBvh's `block`).
-    explicit WideBvh(std::span<const Bounds> items, std::uint32_t leaf_alignment = 1);
+    // The binary tree built with `costs`, collapsed. Where costs.block > 1, every leaf's first
+    // slot is a multiple of it, the slots between leaves padding (kEmptyChild in items()), so
+    // that a user may keep its items in blocks of that many side by side (a mesh's triangles,
+    // four to a SIMD block: trace/shapes/mesh.h).
+    explicit WideBvh(std::span<const Bounds> items, LeafCosts costs = kObjectLeaves);
 
     // This tree over new boxes of the same items (BinaryBvh::refitted's contract).
     WideBvh refitted(std::span<const Bounds> items) const;
