@@ -38,10 +38,11 @@ struct LeafCosts {
 };
 
 // A scene's objects, tested one at a time: the SAH decides every leaf, a level costing half an
-// object's test. Forcing leaves of up to 4 objects, as the mesh's blocks are (the rule until
+// object's test. Forcing leaves of up to 4 objects, as a mesh's blocks are (the rule until
 // round three), made 1080p ray frames 1.2–1.7× slower where long or overlapping objects share
-// boxes (lattice-6, tree-11, rings-7, gears-4) and none faster (docs/PERFORMANCE.md); without
-// the level's cost, shells-2's nested spheres were split apart and 1.5× slower.
+// boxes (lattice-6, tree-11, rings-7, gears-4) and no scene measurably faster; without the
+// level's cost, shells-2's nested spheres were split apart and 1.5× slower
+// (docs/PERFORMANCE.md, "Object leaves chosen by the SAH").
 inline constexpr LeafCosts kObjectLeaves{1, 0.5_r};
 
 class BinaryBvh {
