@@ -426,7 +426,8 @@ TEST(Accel, BvhDepthStaysWithinTheTraversalStackWhereSahPeelsOneObjectALevel) {
 // kObjectLeaves lets the SAH choose every leaf of a scene's objects, a level costing half an
 // object's test: eight boxes far apart each get a leaf of their own (leaves of up to four were
 // forced until round three), and two that nearly coincide share one, which only the level's
-// cost decides. A mesh's leaf of one block (kTriangleLeaves) is never split.
+// cost decides. A mesh's leaf of one block (kTriangleLeaves) is never split, and up to three
+// blocks may share a leaf.
 TEST(Accel, TheSahChoosesObjectLeavesAndAMeshBlockStaysWhole) {
     const auto leaf_sizes = [](const BinaryBvh& bvh) {
         std::vector<std::uint32_t> sizes;
@@ -448,6 +449,19 @@ TEST(Accel, TheSahChoosesObjectLeavesAndAMeshBlockStaysWhole) {
 
     apart.resize(4);
     EXPECT_EQ(leaf_sizes(BinaryBvh(apart, kTriangleLeaves)), std::vector<std::uint32_t>{4});
+
+    // A strip of unit boxes side by side, as a mesh's triangles are: twelve are one leaf of
+    // three blocks (a level costs two block tests), thirteen more than a leaf holds.
+    std::vector<Bounds> strip;
+    for (int i = 0; i < 13; ++i) {
+        const float x = static_cast<float>(i);
+        strip.push_back({Vec3(x, 0.0f, 0.0f), Vec3(x + 1.0f, 1.0f, 1.0f)});
+    }
+    EXPECT_GT(leaf_sizes(BinaryBvh(strip, kTriangleLeaves)).size(), 1u);
+    strip.resize(12);
+    EXPECT_EQ(leaf_sizes(BinaryBvh(strip, kTriangleLeaves)), std::vector<std::uint32_t>{12});
+    EXPECT_GT(leaf_sizes(BinaryBvh(strip, {kTriangleLanes, 0, 12})).size(), 1u)
+        << "without the level's cost the strip is split: the case tests the cost";
 }
 
 // A mesh's own BVH (eight-wide, triangles in blocks in leaf order) returns exactly what testing every

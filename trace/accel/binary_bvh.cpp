@@ -10,7 +10,6 @@ inline namespace GLINT_PRECISION {
 namespace {
 
 constexpr int kBins = 16;
-constexpr std::uint32_t kMaxLeafSize = 8;
 constexpr std::uint32_t kParallelBelow = 4096; // subtrees smaller than this are built serially
 
 struct Builder {
@@ -85,7 +84,7 @@ struct Builder {
         }
         // A leaf costs one test per block; a split its children's expected tests and the level.
         const Real leaf_cost = box.area() * tests(count);
-        if (count <= kMaxLeafSize &&
+        if (count <= costs.most &&
             (best_axis < 0 || best_cost + costs.level * box.area() >= leaf_cost))
             return leaf(node, begin, end);
         std::uint32_t middle;

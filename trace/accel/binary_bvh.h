@@ -35,6 +35,8 @@ struct LeafCosts {
     // One more level, in those tests per unit of the node's area: a node is split only where
     // its children's expected tests save more than this.
     Real level = 0;
+    // The most items a leaf holds, whatever the SAH says.
+    std::uint32_t most = 8;
 };
 
 // A scene's objects, tested one at a time: the SAH decides every leaf, a level costing half an

@@ -29,10 +29,13 @@ struct alignas(16) TriangleBlock {
     }
 };
 
-// A mesh's tree: leaves of one block (up to four triangles) whatever the SAH says, a level not
-// charged. Measured 1.15× more rays/s on a 10⁶-triangle mesh than leaves of 2 (fewer nodes to
-// fetch; bench/accel_bench.cpp, Mesh*).
-inline constexpr LeafCosts kTriangleLeaves{kTriangleLanes, 0};
+// A mesh's tree: a leaf of one block (up to four triangles) is never split, a level costs two
+// block tests, and a leaf holds up to three blocks. On the 10⁶-triangle terrain the tree has
+// 20,834 nodes instead of 54,669 (leaves of at most one block, no level cost): closest hits
+// 0.87–0.96, packets 0.83, shadow rays 0.72 of the time (medians; bench/accel_bench.cpp;
+// docs/PERFORMANCE.md, "Mesh leaves of up to three blocks"); SPD's smaller meshes about the
+// same.
+inline constexpr LeafCosts kTriangleLeaves{kTriangleLanes, 2, 12};
 
 // A scene's triangle mesh prepared for tracing (see prepare_mesh).
 struct Mesh {
