@@ -231,16 +231,24 @@ bool World::visit_leaf(const Ray& ray, std::uint32_t begin, std::uint32_t end, R
 // Ties: on equal t the lower object index wins, whatever order a structure visits objects in,
 // so every structure returns exactly the list's hit. Each object is therefore tested up to the
 // next float above the best t, and an equal t replaces the best only from a lower index.
+Real World::consider_limit(const Closest& query) {
+    const Hit& best = query.best;
+    return best.found() ? std::nextafter(best.t, kInfinity) : best.t;
+}
+
+void World::keep(Closest& query, std::uint32_t index, const ShapeHit& h) {
+    Hit& best = query.best;
+    if (h.t < best.t || (h.t == best.t && best.found() && index < best.object))
+        best = {h.t, index, h.part, h.u, h.v};
+}
+
 template <class Placed, class ShapeOf>
 void World::consider(Closest& query, std::uint32_t index, const Placed& object,
                      const ShapeOf& shape_of) const {
     if (index == query.skip) return;
-    Hit& best = query.best;
-    const Real limit = best.found() ? std::nextafter(best.t, kInfinity) : best.t;
     const bool boxes_tested = accel_.kind() == AccelKind::list; // each item's box, first
-    const ShapeHit h = intersect_object(object, query.slab, limit, boxes_tested, shape_of);
-    if (h.t < best.t || (h.t == best.t && best.found() && index < best.object))
-        best = {h.t, index, h.part, h.u, h.v};
+    keep(query, index,
+         intersect_object(object, query.slab, consider_limit(query), boxes_tested, shape_of));
 }
 
 // Let the structure prune only beyond the best hit, loosely: ties at best.t must still be seen.
@@ -271,7 +279,8 @@ void World::closest_packet(std::span<const Ray> rays, const std::uint32_t* skips
     assert(rays.size() <= kMaxPacket);
     const auto skip = [&](std::size_t r) { return skips ? skips[r] : kNoObject; };
     const WideBvh* bvh = accel_.wide_bvh();
-    if (!bvh) {
+    const ItemList* list = accel_.item_list();
+    if (!bvh && !list) {
         for (std::size_t r = 0; r < rays.size(); ++r)
             hits[r] = closest(rays[r], kInfinity, skip(r), counters);
         return;
@@ -281,6 +290,11 @@ void World::closest_packet(std::span<const Ray> rays, const std::uint32_t* skips
     for (std::size_t r = 0; r < rays.size(); ++r) {
         query[r] = {&rays[r], LazySlab(rays[r]), skip(r), {}};
         limit[r] = begin_closest(query[r], counters);
+    }
+    if (list) {
+        closest_list_packet(*list, rays, query, counters);
+        for (std::size_t r = 0; r < rays.size(); ++r) hits[r] = query[r].best;
+        return;
     }
     bvh->traverse_packet(
         rays.data(), static_cast<int>(rays.size()), limit, counters,
@@ -292,8 +306,43 @@ void World::closest_packet(std::span<const Ray> rays, const std::uint32_t* skips
                        });
             t_limit = loose(query[r].best.t);
             return false;
-        });
+        },
+        [this](std::uint32_t first) { prefetch_leaf(first); });
     for (std::size_t r = 0; r < rays.size(); ++r) hits[r] = query[r].best;
+}
+
+// Each ray meets the list's objects in the list's order, its box tests and its limits its own
+// (ItemList::traverse, closest()'s visitor): only the order across rays is the packet's, and a
+// mesh's test, which intersect_mesh_packet answers for each ray as intersect_mesh would.
+template <class Counters>
+void World::closest_list_packet(const ItemList& list, std::span<const Ray> rays, Closest* query,
+                                Counters& counters) const {
+    const int count = static_cast<int>(rays.size());
+    for (std::uint32_t item = 0; item < list.bounds.size(); ++item) {
+        const std::uint32_t index = bounded_[item];
+        const Object& object = objects_[index];
+        int met[kMaxPacket], n = 0; // the rays whose test the object is
+        for (int r = 0; r < count; ++r) {
+            counters.node();
+            if (!query[r].slab.get().hits(list.bounds[item], loose(query[r].best.t))) continue;
+            counters.primitive();
+            if (index != query[r].skip) met[n++] = r;
+        }
+        if (object.shape == ShapeKind::mesh && n > 1) {
+            Ray local[kMaxPacket];
+            Real limit[kMaxPacket];
+            ShapeHit found[kMaxPacket];
+            for (int k = 0; k < n; ++k)
+                local[k] = object.transform.to_object(rays[met[k]]),
+                limit[k] = consider_limit(query[met[k]]);
+            intersect_mesh_packet(*object.params.mesh, local, n, limit, found, counters,
+                                  Wanted::nearest, object.params.cut_out);
+            for (int k = 0; k < n; ++k) keep(query[met[k]], index, found[k]);
+        } else {
+            for (int k = 0; k < n; ++k)
+                consider(query[met[k]], index, object, shape_of(object, rays[met[k]], counters));
+        }
+    }
 }
 
 template <class Placed, class ShapeOf, class Blocks>
@@ -337,12 +386,13 @@ void World::any_packet(std::span<const Ray> rays, Real t_max, const std::uint32_
         return [&blocks, r](std::uint32_t object) { return blocks(r, object); };
     };
     const WideBvh* bvh = accel_.wide_bvh();
-    if (!bvh) {
+    const ItemList* list = accel_.item_list();
+    if (!bvh && !list) {
         for (std::size_t r = 0; r < rays.size(); ++r)
             found[r] = any(rays[r], t_max, skips[r], counters, blocks_for(r));
         return;
     }
-    // The unbounded objects ray by ray; the rays they leave unanswered go through the tree.
+    // The unbounded objects ray by ray; the rays they leave unanswered go through the structure.
     LazySlab slab[kMaxPacket];
     Ray pending[kMaxPacket];
     Real limit[kMaxPacket];
@@ -362,6 +412,9 @@ void World::any_packet(std::span<const Ray> rays, Real t_max, const std::uint32_
         pending[count] = rays[r];
         limit[count++] = loose(t_max);
     }
+    if (list)
+        return any_list_packet(*list, rays, t_max, skips, slab, which, count, found, counters,
+                               blocks);
     bvh->traverse_packet(
         pending, count, limit, counters,
         [&](int k, std::uint32_t begin, std::uint32_t end, Real& limit) {
@@ -372,7 +425,51 @@ void World::any_packet(std::span<const Ray> rays, Real t_max, const std::uint32_
                            return blocks_ray(slab[r], t_max, skips[r], index, object, false, shape,
                                              blocks_for(r));
                        });
-        });
+        },
+        [this](std::uint32_t first) { prefetch_leaf(first); });
+}
+
+// As closest_list_packet: each ray's own box tests, against loose(t_max) as any() makes them,
+// and its own tests in the list's order until one blocks it.
+template <class Counters, class Blocks>
+void World::any_list_packet(const ItemList& list, std::span<const Ray> rays, Real t_max,
+                            const std::uint32_t* skips, const LazySlab* slab, const int* which,
+                            int count, bool* found, Counters& counters,
+                            const Blocks& blocks) const {
+    const Real box_limit = loose(t_max);
+    int left = count; // rays not yet blocked
+    for (std::uint32_t item = 0; item < list.bounds.size() && left > 0; ++item) {
+        const std::uint32_t index = bounded_[item];
+        const Object& object = objects_[index];
+        int met[kMaxPacket], n = 0;
+        for (int k = 0; k < count; ++k) {
+            const int r = which[k];
+            if (found[r]) continue;
+            counters.node();
+            if (!slab[r].get().hits(list.bounds[item], box_limit)) continue;
+            counters.primitive();
+            if (index != skips[r]) met[n++] = r;
+        }
+        if (object.shape == ShapeKind::mesh && n > 1) {
+            Ray local[kMaxPacket];
+            Real limit[kMaxPacket];
+            ShapeHit hit[kMaxPacket];
+            for (int k = 0; k < n; ++k)
+                local[k] = object.transform.to_object(rays[met[k]]), limit[k] = t_max;
+            intersect_mesh_packet(*object.params.mesh, local, n, limit, hit, counters, Wanted::any,
+                                  object.params.cut_out);
+            for (int k = 0; k < n; ++k)
+                found[met[k]] = hit[k].found() && blocks(static_cast<std::size_t>(met[k]), index);
+        } else {
+            for (int k = 0; k < n; ++k) {
+                const auto r = static_cast<std::size_t>(met[k]);
+                found[r] = blocks_ray(slab[r], t_max, skips[r], index, object, true,
+                                      shape_of(object, rays[r], counters),
+                                      [&blocks, r](std::uint32_t o) { return blocks(r, o); });
+            }
+        }
+        for (int k = 0; k < n; ++k) left -= found[met[k]];
+    }
 }
 
 Hit World::intersect(const Ray& ray, Real t_max, std::uint32_t skip) const {
@@ -445,7 +542,7 @@ void World::intersect_one_packet(std::uint32_t index, std::span<const Ray> rays,
     for (int r = 0; r < count; ++r)
         local[r] = object.transform.to_object(rays[r]), t_max[r] = kInfinity;
     NoCounters none;
-    intersect_mesh_packet(*object.params.mesh, local, count, t_max, found, none,
+    intersect_mesh_packet(*object.params.mesh, local, count, t_max, found, none, Wanted::nearest,
                           object.params.cut_out);
     for (int r = 0; r < count; ++r)
         hits[r] = within_box(object, found[r], LazySlab(rays[r]), t_max[r])

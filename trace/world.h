@@ -130,7 +130,8 @@ class World {
     // Packets of up to kMaxPacket coherent rays (a tile's camera rays, its shadow rays towards
     // one light, its primary hits' reflected rays): exactly intersect(rays[i], kInfinity,
     // skips[i]) (skips null: kNoObject) and occluded(rays[i], t_max, skips[i]) for each, with
-    // the BVH's nodes fetched once per packet (WideBvh::traverse_packet). With any other
+    // the BVH's nodes fetched once per packet (WideBvh::traverse_packet). With the list, object
+    // by object, a mesh's own BVH taking as a packet the rays that meet its box; with any other
     // structure, ray by ray.
     void intersect_packet(std::span<const Ray> rays, Hit* hits,
                           const std::uint32_t* skips = nullptr) const;
@@ -223,6 +224,9 @@ class World {
     template <class Placed, class ShapeOf>
     void consider(Closest& query, std::uint32_t index, const Placed& object,
                   const ShapeOf& shape_of) const;
+    // consider()'s two halves: the limit an object is tested up to, and the tie rule.
+    static Real consider_limit(const Closest& query);
+    static void keep(Closest& query, std::uint32_t index, const ShapeHit& h);
     // The bounded objects the ray may meet, through the structure: visit(index, object, t_max,
     // shape_of) as the structure's visitor (accel.h) with the object's shape_of; with the
     // eight-wide BVH, from leaf_objects_ (visit_leaf).
@@ -233,6 +237,11 @@ class World {
     template <class Counters>
     void closest_packet(std::span<const Ray> rays, const std::uint32_t* skips, Hit* hits,
                         Counters& counters) const;
+    // The list's part of closest_packet, after begin_closest: its objects in order, each for the
+    // rays that meet its box; a mesh met by several rays takes them as a packet.
+    template <class Counters>
+    void closest_list_packet(const ItemList& list, std::span<const Ray> rays, Closest* query,
+                             Counters& counters) const;
     // Whether object `object` (other than `skip`) is hit in (0, t_max) and `blocks` it.
     template <class Placed, class ShapeOf, class Blocks>
     bool blocks_ray(const LazySlab& slab, Real t_max, std::uint32_t skip, std::uint32_t index,
@@ -252,6 +261,12 @@ class World {
     template <class Counters, class Blocks>
     void any_packet(std::span<const Ray> rays, Real t_max, const std::uint32_t* skips, bool* found,
                     Counters& counters, const Blocks& blocks) const;
+    // The list's part of any_packet for the rays `which` names (the unbounded objects asked
+    // already), as closest_list_packet takes its objects.
+    template <class Counters, class Blocks>
+    void any_list_packet(const ItemList& list, std::span<const Ray> rays, Real t_max,
+                         const std::uint32_t* skips, const LazySlab* slab, const int* which,
+                         int count, bool* found, Counters& counters, const Blocks& blocks) const;
 
     // The camera-relative part: objects, lights and bounds; the structure is the caller's.
     struct CameraRelative {};

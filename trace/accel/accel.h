@@ -52,6 +52,8 @@ class Accelerator {
     AccelKind kind() const { return static_cast<AccelKind>(structure_.index()); }
     // The eight-wide BVH, which alone traverses packets of rays; null for the other kinds.
     const WideBvh* wide_bvh() const { return std::get_if<WideBvh>(&structure_); }
+    // The list, whose packets World takes object by object; null for the other kinds.
+    const ItemList* item_list() const { return std::get_if<ItemList>(&structure_); }
     std::size_t memory_bytes() const;
     std::size_t node_count() const;
 

@@ -345,20 +345,23 @@ class WideBvh {
     // order; the visitors' answers do not depend on the order: tests/accel_test.cpp).
     // visit(ray, first_slot, end_slot, t_max) may shorten that ray's limit and returns true when
     // the ray is done (any hit found). t_max[r] is each ray's limit, as in traverse.
-    template <class Counters, class VisitLeaf>
-    void traverse_packet(const Ray* rays, int count, const Real* t_max, Counters& counters,
-                         VisitLeaf&& visit) const {
+    // prefetch_leaf(first_slot) is told of every leaf some ray meets, as traverse_leaves tells it,
+    // and the waiting inner children are fetched likewise.
+    template <class Counters, class VisitLeaf, class PrefetchLeaf = void (*)(std::uint32_t)>
+    void traverse_packet(
+        const Ray* rays, int count, const Real* t_max, Counters& counters, VisitLeaf&& visit,
+        PrefetchLeaf&& prefetch_leaf = [](std::uint32_t) {}) const {
 #if GLINT_SIMD
         switch (active_kernel()) {
         case Kernel::avx512:
-            return traverse_packet_avx512(rays, count, t_max, counters, visit);
+            return traverse_packet_avx512(rays, count, t_max, counters, visit, prefetch_leaf);
         case Kernel::avx2:
-            return traverse_packet_avx2(rays, count, t_max, counters, visit);
+            return traverse_packet_avx2(rays, count, t_max, counters, visit, prefetch_leaf);
         case Kernel::sse:
             break;
         }
 #endif
-        traverse_packet_with<Kernel::sse>(rays, count, t_max, counters, visit);
+        traverse_packet_with<Kernel::sse>(rays, count, t_max, counters, visit, prefetch_leaf);
     }
 
   private:
@@ -371,16 +374,17 @@ class WideBvh {
                                                       PrefetchLeaf& prefetch_leaf) const {
         traverse_leaves_with<true>(ray, t_max, counters, visit, prefetch_leaf);
     }
-    template <class Counters, class VisitLeaf>
+    template <class Counters, class VisitLeaf, class PrefetchLeaf>
     [[gnu::target("avx2")]] void traverse_packet_avx2(const Ray* rays, int count, const Real* t_max,
-                                                      Counters& counters, VisitLeaf& visit) const {
-        traverse_packet_with<Kernel::avx2>(rays, count, t_max, counters, visit);
+                                                      Counters& counters, VisitLeaf& visit,
+                                                      PrefetchLeaf& prefetch_leaf) const {
+        traverse_packet_with<Kernel::avx2>(rays, count, t_max, counters, visit, prefetch_leaf);
     }
-    template <class Counters, class VisitLeaf>
-    [[gnu::target("avx512f")]] void traverse_packet_avx512(const Ray* rays, int count,
-                                                           const Real* t_max, Counters& counters,
-                                                           VisitLeaf& visit) const {
-        traverse_packet_with<Kernel::avx512>(rays, count, t_max, counters, visit);
+    template <class Counters, class VisitLeaf, class PrefetchLeaf>
+    [[gnu::target("avx512f")]] void
+    traverse_packet_avx512(const Ray* rays, int count, const Real* t_max, Counters& counters,
+                           VisitLeaf& visit, PrefetchLeaf& prefetch_leaf) const {
+        traverse_packet_with<Kernel::avx512>(rays, count, t_max, counters, visit, prefetch_leaf);
     }
 #endif
 
@@ -445,9 +449,10 @@ class WideBvh {
     }
 
     // traverse_packet with the box test of kernel K.
-    template <Kernel K, class Counters, class VisitLeaf>
+    template <Kernel K, class Counters, class VisitLeaf, class PrefetchLeaf>
     [[gnu::always_inline]] void traverse_packet_with(const Ray* rays, int count, const Real* t_max,
-                                                     Counters& counters, VisitLeaf& visit) const {
+                                                     Counters& counters, VisitLeaf& visit,
+                                                     PrefetchLeaf& prefetch_leaf) const {
         assert(count <= kMaxPacket);
         if (nodes_.empty() || count == 0) return;
         PacketRays packet(rays, count, t_max);
@@ -486,7 +491,13 @@ class WideBvh {
                     for (; at > 0 && hit[at - 1].t > e.t; --at) hit[at] = hit[at - 1];
                     hit[at] = e;
                 }
-                for (int k = hits - 1; k > 0; --k) stack[top++] = hit[k];
+                for (int k = hits - 1; k >= 0; --k) {
+                    if (hit[k].count > 0)
+                        prefetch_leaf(hit[k].child);
+                    else if (k > 0)
+                        prefetch(hit[k].child);
+                    if (k > 0) stack[top++] = hit[k];
+                }
                 if (hits > 0) {
                     next = hit[0];
                     continue;

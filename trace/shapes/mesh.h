@@ -307,29 +307,33 @@ ShapeHit intersect_mesh(const Mesh& mesh, const Ray& ray, Real t_max, Counters& 
 }
 
 // intersect_mesh for `count` ≤ kMaxPacket coherent rays at once (an item buffer's block of
-// pixels that name the mesh): best[r] = intersect_mesh(mesh, rays[r], t_max[r]), bit for bit.
-// Through the mesh's BVH as a packet (WideBvh::traverse_packet, which offers each ray the leaves
-// its own traversal could be offered, in another order; the tie rule makes the order
-// irrelevant); a mesh without one, ray by ray.
+// pixels that name the mesh, a tile's camera or shadow rays): best[r] = intersect_mesh(mesh,
+// rays[r], t_max[r], counters, wanted, cut), bit for bit where `wanted` is the nearest hit; for
+// Wanted::any, found exactly where that is (the hit itself may be another). Through the mesh's
+// BVH as a packet (WideBvh::traverse_packet, which offers each ray the leaves its own traversal
+// could be offered, in another order; the tie rule makes the order irrelevant); a mesh without
+// one, ray by ray.
 template <class Counters>
 void intersect_mesh_packet(const Mesh& mesh, const Ray* rays, int count, const Real* t_max,
-                           ShapeHit* best, Counters& counters, const CutOut* cut = nullptr) {
+                           ShapeHit* best, Counters& counters, Wanted wanted = Wanted::nearest,
+                           const CutOut* cut = nullptr) {
     if (mesh.bvh.nodes().empty()) {
         for (int r = 0; r < count; ++r)
-            best[r] = intersect_mesh(mesh, rays[r], t_max[r], counters, Wanted::nearest, cut);
+            best[r] = intersect_mesh(mesh, rays[r], t_max[r], counters, wanted, cut);
         return;
     }
     std::optional<WatertightRay> prepared[kMaxPacket]; // made on a ray's first leaf
     Real box_limit[kMaxPacket];
     for (int r = 0; r < count; ++r) best[r] = {}, box_limit[r] = loose(t_max[r]);
-    mesh.bvh.traverse_packet(rays, count, box_limit, counters,
-                             [&](int r, std::uint32_t begin, std::uint32_t end, Real& limit) {
-                                 if (!prepared[r]) prepared[r].emplace(rays[r]);
-                                 consider_triangles(mesh, begin, end, *prepared[r], t_max[r],
-                                                    best[r], counters, cut);
-                                 limit = loose(std::min(best[r].t, t_max[r]));
-                                 return false;
-                             });
+    mesh.bvh.traverse_packet(
+        rays, count, box_limit, counters,
+        [&](int r, std::uint32_t begin, std::uint32_t end, Real& limit) {
+            if (!prepared[r]) prepared[r].emplace(rays[r]);
+            consider_triangles(mesh, begin, end, *prepared[r], t_max[r], best[r], counters, cut);
+            limit = loose(std::min(best[r].t, t_max[r]));
+            return wanted == Wanted::any && best[r].found();
+        },
+        [&](std::uint32_t first) { prefetch_block(mesh, first); });
 }
 
 // The surface at barycentric weights (u, v) of triangle `triangle`'s vertices 1 and 2, as its
