@@ -92,6 +92,50 @@ void make_every_third_glass(Scene& scene) {
     for (std::size_t i = 0; i < scene.objects.size(); i += 3) scene.objects[i].material = 1;
 }
 
+// What the list answers a packet's rays one at a time.
+struct ListAnswers {
+    Hit hit, skipped; // intersect, without skips and with `closest_skips`
+    bool occluded = false, opaque = false, glass = false;
+};
+
+// A packet's four queries on `tested` (intersect_packet without skips and with
+// `closest_skips`, occluded_packet and opaque_between_packet with `skips`): each ray's answers
+// must be the list's ray by ray, t, part and u, v included; whether glass lies on the ray is
+// asked only where nothing opaque does. The list's answers in `answers`.
+void expect_packet_agrees(const World& tested, const World& list, std::span<const Ray> batch,
+                          const std::uint32_t* closest_skips, const std::uint32_t* skips,
+                          float t_max, const std::string& where, ListAnswers* answers) {
+    const std::size_t count = batch.size();
+    Hit hits[kMaxPacket], skipping[kMaxPacket];
+    bool blocked[kMaxPacket], opaque[kMaxPacket], glass[kMaxPacket];
+    tested.intersect_packet(batch, hits);
+    tested.intersect_packet(batch, skipping, closest_skips);
+    tested.occluded_packet(batch, t_max, skips, blocked);
+    tested.opaque_between_packet(batch, t_max, skips, opaque, glass);
+    const auto same = [&](const Hit& got, const Hit& expected, std::size_t r, const char* query) {
+        const std::string at = where + " ray " + std::to_string(r) + " " + query;
+        ASSERT_EQ(got.object, expected.object) << at;
+        ASSERT_EQ(got.t, expected.t) << at;
+        ASSERT_EQ(got.primitive, expected.primitive) << at;
+        ASSERT_EQ(got.u, expected.u) << at;
+        ASSERT_EQ(got.v, expected.v) << at;
+    };
+    for (std::size_t r = 0; r < count; ++r) {
+        ListAnswers& a = answers[r];
+        a.hit = list.intersect(batch[r]);
+        a.skipped = list.intersect(batch[r], kInfinity, closest_skips[r]);
+        a.occluded = list.occluded(batch[r], t_max, skips[r]);
+        a.opaque = list.opaque_between(batch[r], t_max, skips[r], a.glass);
+        ASSERT_NO_FATAL_FAILURE(same(hits[r], a.hit, r, "closest"));
+        ASSERT_NO_FATAL_FAILURE(same(skipping[r], a.skipped, r, "closest, skipping"));
+        ASSERT_EQ(blocked[r], a.occluded) << where << " ray " << r << " any";
+        ASSERT_EQ(opaque[r], a.opaque) << where << " ray " << r << " opaque";
+        if (!opaque[r]) {
+            ASSERT_EQ(glass[r], a.glass) << where << " ray " << r << " glass";
+        }
+    }
+}
+
 class AccelTest : public ::testing::TestWithParam<AccelKind> {};
 
 TEST_P(AccelTest, AgreesExactlyWithTheListOnAMillionRandomRays) {
@@ -184,36 +228,15 @@ TEST_P(AccelTest, PacketsAgreeExactlyWithTheListRayByRay) {
             std::uint32_t first_skipped[kMaxPacket];
             for (std::size_t r = 0; r < count; ++r)
                 first_skipped[r] = r % 2 == 0 ? list.intersect(batch[r]).object : skips[r];
-            Hit hits[kMaxPacket], skipping[kMaxPacket];
-            bool blocked[kMaxPacket], opaque[kMaxPacket], glass[kMaxPacket];
             const float t_max = packet % 3 == 1 ? 1.0f : 4 + 10 * (u(rng) + 1);
-            other.intersect_packet({batch, count}, hits);
-            other.intersect_packet({batch, count}, skipping, first_skipped);
-            other.occluded_packet({batch, count}, t_max, skips, blocked);
-            other.opaque_between_packet({batch, count}, t_max, skips, opaque, glass);
+            ListAnswers answers[kMaxPacket];
+            ASSERT_NO_FATAL_FAILURE(expect_packet_agrees(
+                other, list, {batch, count}, first_skipped, skips, t_max,
+                "scene " + std::to_string(seed) + " packet " + std::to_string(packet), answers));
             for (std::size_t r = 0; r < count; ++r, ++rays) {
-                const Hit expected = list.intersect(batch[r]);
-                ASSERT_EQ(hits[r].object, expected.object)
-                    << "scene " << seed << " packet " << packet;
-                ASSERT_EQ(hits[r].t, expected.t) << "scene " << seed << " packet " << packet;
-                ASSERT_EQ(hits[r].primitive, expected.primitive) << "scene " << seed;
-                const Hit skipped = list.intersect(batch[r], kInfinity, first_skipped[r]);
-                ASSERT_EQ(skipping[r].object, skipped.object) << "scene " << seed;
-                ASSERT_EQ(skipping[r].t, skipped.t) << "scene " << seed << " packet " << packet;
-                ASSERT_EQ(skipping[r].primitive, skipped.primitive) << "scene " << seed;
-                ASSERT_EQ(skipping[r].u, skipped.u) << "scene " << seed << " packet " << packet;
-                ASSERT_EQ(skipping[r].v, skipped.v) << "scene " << seed << " packet " << packet;
-                skipped_hits += skipped.found() && skipped.object != expected.object;
-                ASSERT_EQ(blocked[r], list.occluded(batch[r], t_max, skips[r]))
-                    << "scene " << seed << " packet " << packet << " ray " << r;
-                bool list_glass = false;
-                ASSERT_EQ(opaque[r], list.opaque_between(batch[r], t_max, skips[r], list_glass))
-                    << "scene " << seed << " packet " << packet << " ray " << r;
-                // Whether glass lies on the ray is asked only where nothing opaque does.
-                if (!opaque[r]) {
-                    ASSERT_EQ(glass[r], list_glass) << "scene " << seed;
-                }
-                glass_rays += glass[r] && !opaque[r];
+                const ListAnswers& a = answers[r];
+                skipped_hits += a.skipped.found() && a.skipped.object != a.hit.object;
+                glass_rays += a.glass && !a.opaque;
             }
         }
     }
@@ -490,6 +513,43 @@ TriangleMesh grid_mesh() {
     return given;
 }
 
+// The ways a test aims a packet's rays at the grid mesh.
+enum class AtGrid { cell, vertex, edge_midpoint, camera_block, shadow, grazing };
+
+// Ray r of a packet at the grid placed by `to_world` (its object space to the world): from
+// `eye` towards a random point of it (a height of five levels, 0 to 1.2) in a cell, at a vertex
+// or an edge's midpoint, or ray r of a 4×4 block towards its middle; from such a point towards
+// `eye` (a shadow ray); or grazing along its cells in its object space.
+template <class ToWorld>
+Ray grid_ray(AtGrid at, std::size_t r, Vec3 eye, const ToWorld& to_world, std::mt19937& rng) {
+    std::uniform_real_distribution<float> u(-1, 1), cell(0, static_cast<float>(kGrid - 1));
+    Vec3 target(cell(rng), 0.3f * static_cast<float>(rng() % 5), cell(rng));
+    switch (at) {
+    case AtGrid::vertex:
+        target = glm::round(target);
+        break;
+    case AtGrid::edge_midpoint:
+        target.x = std::round(target.x * 2) / 2, target.z = std::round(target.z);
+        break;
+    case AtGrid::camera_block:
+        target = Vec3(12 + 0.3f * static_cast<float>(r % 4), 0.5f,
+                      12 + 0.3f * static_cast<float>(r / 4));
+        break;
+    case AtGrid::shadow: {
+        const Vec3 from = to_world(target + Vec3(0, 0.01f, 0));
+        return Ray{from, eye - from};
+    }
+    case AtGrid::grazing: {
+        const Vec3 from = to_world({-1, target.y, target.z});
+        const Vec3 to(static_cast<float>(kGrid), target.y, target.z + 0.01f * u(rng));
+        return Ray{from, to_world(to) - from};
+    }
+    case AtGrid::cell:
+        break;
+    }
+    return Ray{eye, to_world(target) - eye};
+}
+
 TEST(Accel, MeshHitsAreTheSameWhateverTheVisitingOrder) {
     constexpr std::uint32_t n = kGrid;
     const Mesh mesh = prepare_mesh(grid_mesh());
@@ -581,7 +641,7 @@ TEST(Accel, MeshAnyHitIsFoundExactlyWhenTheNearestIs) {
 // random_scene's: thin, sheared, rotated, on a lattice. About 750,000 rays in Release.
 TEST(Accel, OneObjectPacketsAgreeExactlyWithSingleRays) {
     std::mt19937 rng(31);
-    std::uniform_real_distribution<float> u(-1, 1), cell(0, static_cast<float>(kGrid - 1));
+    std::uniform_real_distribution<float> u(-1, 1);
     std::uint64_t rays = 0, mesh_hits = 0;
     const unsigned scenes = testing::kUnderSanitizers ? 40 : 200;
     for (unsigned seed = 0; seed < scenes; ++seed) {
@@ -605,28 +665,10 @@ TEST(Accel, OneObjectPacketsAgreeExactlyWithSingleRays) {
             const std::size_t count = 1 + rng() % kMaxPacket;
             const Vec3 eye(7 * u(rng), 7 * u(rng), 7 * u(rng));
             Ray batch[kMaxPacket];
+            constexpr AtGrid kAt[5] = {AtGrid::vertex, AtGrid::edge_midpoint, AtGrid::camera_block,
+                                       AtGrid::cell, AtGrid::grazing};
             for (std::size_t r = 0; r < count; ++r) {
-                Vec3 target(cell(rng), 0.3f * static_cast<float>(rng() % 5), cell(rng));
-                switch (packet % 5) {
-                case 0: // at grid vertices
-                    target = glm::round(target);
-                    break;
-                case 1: // at edge midpoints
-                    target.x = std::round(target.x * 2) / 2, target.z = std::round(target.z);
-                    break;
-                case 2: // a 4×4 block of camera rays towards the grid's middle
-                    target = Vec3(12 + 0.3f * static_cast<float>(r % 4), 0.5f,
-                                  12 + 0.3f * static_cast<float>(r / 4));
-                    break;
-                default:
-                    break;
-                }
-                batch[r] = Ray{eye, to_world(target) - eye};
-                if (packet % 5 == 4) { // grazing: along the grid's cells, in its object space
-                    const Vec3 from = to_world({-1, target.y, target.z});
-                    const Vec3 to(static_cast<float>(kGrid), target.y, target.z + 0.01f * u(rng));
-                    batch[r] = Ray{from, to_world(to) - from};
-                }
+                batch[r] = grid_ray(kAt[packet % 5], r, eye, to_world, rng);
                 if (packet % 7 == 6) batch[r] = random_ray(rng);
                 if (batch[r].direction == Vec3(0.0f)) batch[r].direction = {0, 0, 1};
             }
@@ -660,7 +702,7 @@ TEST(Accel, OneObjectPacketsAgreeExactlyWithSingleRays) {
 // packet. About 640,000 rays in Release, 60% of them hitting a grid first.
 TEST(Accel, ListPacketsAgreeExactlyWithTheListRayByRay) {
     std::mt19937 rng(57);
-    std::uniform_real_distribution<float> u(-1, 1), cell(0, static_cast<float>(kGrid - 1));
+    std::uniform_real_distribution<float> u(-1, 1);
     std::uint64_t rays = 0, mesh_hits = 0, blocked_by_mesh = 0;
     const unsigned scenes = testing::kUnderSanitizers ? 30 : 150;
     for (unsigned seed = 0; seed < scenes; ++seed) {
@@ -691,63 +733,26 @@ TEST(Accel, ListPacketsAgreeExactlyWithTheListRayByRay) {
             const Vec3 eye(7 * u(rng), 7 * u(rng), 7 * u(rng));
             Ray batch[kMaxPacket];
             std::uint32_t skips[kMaxPacket];
+            constexpr AtGrid kAt[5] = {AtGrid::vertex, AtGrid::camera_block, AtGrid::shadow,
+                                       AtGrid::grazing, AtGrid::cell};
             for (std::size_t r = 0; r < count; ++r) {
-                Vec3 target(cell(rng), 0.3f * static_cast<float>(rng() % 5), cell(rng));
-                if (packet % 5 == 0) target = glm::round(target); // at the grid's vertices
-                // A 4×4 block of camera rays.
-                if (packet % 5 == 1)
-                    target = Vec3(12 + 0.3f * static_cast<float>(r % 4), 0.5f,
-                                  12 + 0.3f * static_cast<float>(r / 4));
-                batch[r] = Ray{eye, to_world(target) - eye};
-                if (packet % 5 == 2) { // shadow rays from the grid towards one point
-                    batch[r].origin = to_world(target + Vec3(0, 0.01f, 0));
-                    batch[r].direction = eye - batch[r].origin;
-                }
-                if (packet % 5 == 3) { // grazing: along the grid's cells, in its object space
-                    const Vec3 from = to_world({-1, target.y, target.z});
-                    const Vec3 to(static_cast<float>(kGrid), target.y, target.z + 0.01f * u(rng));
-                    batch[r] = Ray{from, to_world(to) - from};
-                }
+                batch[r] = grid_ray(kAt[packet % 5], r, eye, to_world, rng);
                 if (packet % 7 == 6) batch[r] = random_ray(rng);
                 if (batch[r].direction == Vec3(0.0f)) batch[r].direction = {0, 0, 1};
                 skips[r] = rng() % 3 == 0 ? grids[rng() % 2] : kNoObject;
             }
-            Hit hits[kMaxPacket], skipping[kMaxPacket];
-            bool blocked[kMaxPacket], opaque[kMaxPacket], glass[kMaxPacket];
             const float t_max = packet % 5 == 2 ? 1.0f : 2 + 10 * (u(rng) + 1);
-            list.intersect_packet({batch, count}, hits);
-            list.intersect_packet({batch, count}, skipping, skips);
-            list.occluded_packet({batch, count}, t_max, skips, blocked);
-            list.opaque_between_packet({batch, count}, t_max, skips, opaque, glass);
+            ListAnswers answers[kMaxPacket];
+            ASSERT_NO_FATAL_FAILURE(expect_packet_agrees(
+                list, list, {batch, count}, skips, skips, t_max,
+                "scene " + std::to_string(seed) + " packet " + std::to_string(packet), answers));
             for (std::size_t r = 0; r < count; ++r, ++rays) {
-                const auto where = [&] {
-                    return "scene " + std::to_string(seed) + " packet " + std::to_string(packet) +
-                           " ray " + std::to_string(r);
+                const ListAnswers& a = answers[r];
+                const auto on_grid = [&](const Hit& h) {
+                    return h.object == grids[0] || h.object == grids[1];
                 };
-                const Hit expected = list.intersect(batch[r]);
-                mesh_hits += expected.object == grids[0] || expected.object == grids[1];
-                ASSERT_EQ(hits[r].object, expected.object) << where();
-                ASSERT_EQ(hits[r].t, expected.t) << where();
-                ASSERT_EQ(hits[r].primitive, expected.primitive) << where();
-                ASSERT_EQ(hits[r].u, expected.u) << where();
-                ASSERT_EQ(hits[r].v, expected.v) << where();
-                const Hit skipped = list.intersect(batch[r], kInfinity, skips[r]);
-                ASSERT_EQ(skipping[r].object, skipped.object) << where();
-                ASSERT_EQ(skipping[r].t, skipped.t) << where();
-                ASSERT_EQ(skipping[r].primitive, skipped.primitive) << where();
-                ASSERT_EQ(skipping[r].u, skipped.u) << where();
-                ASSERT_EQ(skipping[r].v, skipped.v) << where();
-                const bool occluded = list.occluded(batch[r], t_max, skips[r]);
-                ASSERT_EQ(blocked[r], occluded) << where();
-                blocked_by_mesh += occluded &&
-                                   (skipped.object == grids[0] || skipped.object == grids[1]) &&
-                                   skipped.t < t_max;
-                bool list_glass = false;
-                ASSERT_EQ(opaque[r], list.opaque_between(batch[r], t_max, skips[r], list_glass))
-                    << where();
-                if (!opaque[r]) {
-                    ASSERT_EQ(glass[r], list_glass) << where();
-                }
+                mesh_hits += on_grid(a.hit);
+                blocked_by_mesh += a.occluded && on_grid(a.skipped) && a.skipped.t < t_max;
             }
         }
     }
