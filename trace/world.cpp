@@ -26,6 +26,11 @@ bool within_box(const Placed& object, const ShapeHit& hit, const LazySlab& slab,
     return !hit.found() || !object.bounded || slab.get().hits(object.bounds, loose(t_max));
 }
 
+// A packet's blocks(r, ·) for ray r, as any() takes it.
+template <class Blocks> auto ray_blocks(const Blocks& blocks, std::size_t r) {
+    return [&blocks, r](std::uint32_t object) { return blocks(r, object); };
+}
+
 // A shape's hit on object `index` as the World's Hit, or no hit.
 Hit hit_on(std::uint32_t index, const ShapeHit& h) {
     return h.found() ? Hit{h.t, index, h.part, h.u, h.v} : Hit{};
@@ -382,14 +387,11 @@ template <class Counters, class Blocks>
 void World::any_packet(std::span<const Ray> rays, Real t_max, const std::uint32_t* skips,
                        bool* found, Counters& counters, const Blocks& blocks) const {
     assert(rays.size() <= kMaxPacket);
-    const auto blocks_for = [&blocks](std::size_t r) { // blocks(r, ·), as any() takes it
-        return [&blocks, r](std::uint32_t object) { return blocks(r, object); };
-    };
     const WideBvh* bvh = accel_.wide_bvh();
     const ItemList* list = accel_.item_list();
     if (!bvh && !list) {
         for (std::size_t r = 0; r < rays.size(); ++r)
-            found[r] = any(rays[r], t_max, skips[r], counters, blocks_for(r));
+            found[r] = any(rays[r], t_max, skips[r], counters, ray_blocks(blocks, r));
         return;
     }
     // The unbounded objects ray by ray; the rays they leave unanswered go through the structure.
@@ -402,9 +404,9 @@ void World::any_packet(std::span<const Ray> rays, Real t_max, const std::uint32_
         found[r] = false;
         for (const std::uint32_t object : unbounded_) {
             counters.primitive();
-            if ((found[r] =
-                     blocks_ray(slab[r], t_max, skips[r], object, objects_[object], false,
-                                shape_of(objects_[object], rays[r], counters), blocks_for(r))))
+            if ((found[r] = blocks_ray(slab[r], t_max, skips[r], object, objects_[object], false,
+                                       shape_of(objects_[object], rays[r], counters),
+                                       ray_blocks(blocks, r))))
                 break;
         }
         if (found[r]) continue;
@@ -423,7 +425,7 @@ void World::any_packet(std::span<const Ray> rays, Real t_max, const std::uint32_
                        rays[r], begin, end, limit, counters,
                        [&](std::uint32_t index, const auto& object, Real&, const auto& shape) {
                            return blocks_ray(slab[r], t_max, skips[r], index, object, false, shape,
-                                             blocks_for(r));
+                                             ray_blocks(blocks, r));
                        });
         },
         [this](std::uint32_t first) { prefetch_leaf(first); });
@@ -464,8 +466,7 @@ void World::any_list_packet(const ItemList& list, std::span<const Ray> rays, Rea
             for (int k = 0; k < n; ++k) {
                 const auto r = static_cast<std::size_t>(met[k]);
                 found[r] = blocks_ray(slab[r], t_max, skips[r], index, object, true,
-                                      shape_of(object, rays[r], counters),
-                                      [&blocks, r](std::uint32_t o) { return blocks(r, o); });
+                                      shape_of(object, rays[r], counters), ray_blocks(blocks, r));
             }
         }
         for (int k = 0; k < n; ++k) left -= found[met[k]];
