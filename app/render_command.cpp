@@ -217,9 +217,12 @@ bool wants(const std::vector<Aov>& aovs, Aov aov) {
 // The frame as the output's format: the PNG's bytes (through the sRGB curve with --colour srgb),
 // or the EXR's float image with its AOVs (linear either way).
 void write_image(const RenderJob& job, const RenderResult& result) {
-    if (extension_of(job.output) == ".png")
-        return write_png(job.output,
-                         job.srgb ? to_srgb_bytes(result.display()) : result.bytes());
+    if (extension_of(job.output) == ".png") {
+        // Rows quantised as they are deflated: no 8-bit copy of the frame.
+        const FloatImage& display = result.display();
+        return write_png(job.output, display.width, display.height,
+                         [&](int y, std::uint8_t* out) { row_bytes(display, y, job.srgb, out); });
+    }
     const std::vector<float> cutoff =
         wants(job.aovs, Aov::cutoff) ? cutoff_radiance(job.scene, result) : std::vector<float>();
     ExrLayers layers{&result.radiance};

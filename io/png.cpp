@@ -4,11 +4,13 @@
 
 #include <stb_image.h>
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <zlib.h>
 
 #include <cstring>
 #include <stdexcept>
+#include <vector>
 
 namespace glint {
 
@@ -39,60 +41,73 @@ void put_chunk(std::string& out, const char* type, const std::string& data) {
     end_chunk(out, start);
 }
 
-// Rows [y0, y1) of the image, each with its PNG filter byte, deflated as raw blocks that end on
-// a byte boundary (Z_SYNC_FLUSH) unless `last`, so that bands concatenate into one stream.
-std::string deflate_band(const Image& image, int y0, int y1, bool last, uLong& adler) {
-    const std::size_t row = static_cast<std::size_t>(image.width) * 3;
-    std::string filtered((row + 1) * static_cast<std::size_t>(y1 - y0), '\0');
+// What one thread reuses from band to band: its pages are touched once, not once a band (the
+// first touch of fresh memory, not the deflate, was most of a 1080p write on a virtual machine:
+// docs/PERFORMANCE.md, "The PNG's bands in reused buffers").
+struct BandScratch {
+    std::vector<std::uint8_t> row, above; // a row's bytes, and those of the row above it
+    std::vector<Bytef> filtered, out;
+};
+
+// Rows [y0, y1), each with its PNG filter byte, deflated as raw blocks that end on a byte
+// boundary (Z_SYNC_FLUSH) unless `last`, so that bands concatenate into one stream.
+std::string deflate_band(int width, const PngRows& rows, int y0, int y1, bool last, uLong& adler,
+                         BandScratch& scratch) {
+    const std::size_t row = static_cast<std::size_t>(width) * 3;
+    scratch.row.resize(row), scratch.above.resize(row);
+    scratch.filtered.resize((row + 1) * static_cast<std::size_t>(y1 - y0));
+    if (y0 > 0) rows(y0 - 1, scratch.above.data());
     for (int y = y0; y < y1; ++y) {
         // Filter "Up" (each byte minus the one above; the band's first row too, since PNG
         // filters see the previous row of the image, not of the band): renders vary smoothly
         // down a column, and it costs one subtraction a byte.
-        auto* out = reinterpret_cast<std::uint8_t*>(&filtered[(row + 1) * (y - y0)]);
-        const std::uint8_t* cur = image.pixel(0, y);
+        Bytef* out = &scratch.filtered[(row + 1) * static_cast<std::size_t>(y - y0)];
+        const std::uint8_t* cur = scratch.row.data();
+        rows(y, scratch.row.data());
         out[0] = y == 0 ? 0 : 2;
         if (y == 0) {
             std::copy(cur, cur + row, out + 1);
         } else {
-            const std::uint8_t* above = image.pixel(0, y - 1);
+            const std::uint8_t* above = scratch.above.data();
             for (std::size_t i = 0; i < row; ++i)
                 out[i + 1] = static_cast<std::uint8_t>(cur[i] - above[i]);
         }
+        scratch.row.swap(scratch.above);
     }
-    const auto* in = reinterpret_cast<const Bytef*>(filtered.data());
-    adler = adler32(1, in, static_cast<uInt>(filtered.size()));
+    const Bytef* in = scratch.filtered.data();
+    adler = adler32(1, in, static_cast<uInt>(scratch.filtered.size()));
     z_stream z{};
     // Level 1 with raw deflate (windowBits −15): the zlib header and checksum are written once,
     // around all the bands.
     if (deflateInit2(&z, 1, Z_DEFLATED, -15, 8, Z_DEFAULT_STRATEGY) != Z_OK)
         throw std::runtime_error("zlib: deflateInit2 failed");
-    std::string out(deflateBound(&z, static_cast<uLong>(filtered.size())) + 16, '\0');
+    scratch.out.resize(deflateBound(&z, static_cast<uLong>(scratch.filtered.size())) + 16);
     z.next_in = const_cast<Bytef*>(in);
-    z.avail_in = static_cast<uInt>(filtered.size());
-    z.next_out = reinterpret_cast<Bytef*>(out.data());
-    z.avail_out = static_cast<uInt>(out.size());
+    z.avail_in = static_cast<uInt>(scratch.filtered.size());
+    z.next_out = scratch.out.data();
+    z.avail_out = static_cast<uInt>(scratch.out.size());
     const int status = deflate(&z, last ? Z_FINISH : Z_SYNC_FLUSH);
-    out.resize(z.total_out);
+    const std::size_t size = z.total_out;
     deflateEnd(&z);
     if (status != (last ? Z_STREAM_END : Z_OK) || z.avail_in != 0)
         throw std::runtime_error("zlib: deflate failed");
-    return out;
+    return std::string(reinterpret_cast<const char*>(scratch.out.data()), size);
 }
 
 } // namespace
 
-std::string encode_png(const Image& image) {
-    if (image.width <= 0 || image.height <= 0)
-        throw std::runtime_error("cannot encode an empty image");
+std::string encode_png(int width, int height, const PngRows& rows) {
+    if (width <= 0 || height <= 0) throw std::runtime_error("cannot encode an empty image");
     // Bands of rows deflated in parallel and joined into one zlib stream, as pigz does: a 1080p
     // render is encoded in a fraction of the single-threaded time (docs/PERFORMANCE.md).
     constexpr int kRowsPerBand = 64;
-    const int bands = (image.height + kRowsPerBand - 1) / kRowsPerBand;
+    const int bands = (height + kRowsPerBand - 1) / kRowsPerBand;
     std::vector<std::string> deflated(static_cast<std::size_t>(bands));
     std::vector<uLong> adlers(static_cast<std::size_t>(bands));
+    tbb::enumerable_thread_specific<BandScratch> scratch;
     tbb::parallel_for(0, bands, [&](int b) {
-        const int y0 = b * kRowsPerBand, y1 = std::min(image.height, y0 + kRowsPerBand);
-        deflated[b] = deflate_band(image, y0, y1, b == bands - 1, adlers[b]);
+        const int y0 = b * kRowsPerBand, y1 = std::min(height, y0 + kRowsPerBand);
+        deflated[b] = deflate_band(width, rows, y0, y1, b == bands - 1, adlers[b], scratch.local());
     });
     std::size_t idat_size = 2 + 4; // the zlib header, the bands, the Adler-32 checksum
     for (const std::string& band : deflated) idat_size += band.size();
@@ -101,24 +116,34 @@ std::string encode_png(const Image& image) {
     std::string png = "\x89PNG\r\n\x1a\n";
     png.reserve(png.size() + 25 + (12 + idat_size) + 12); // IHDR, IDAT, IEND
     std::string header;
-    put_u32(header, static_cast<std::uint32_t>(image.width));
-    put_u32(header, static_cast<std::uint32_t>(image.height));
+    put_u32(header, static_cast<std::uint32_t>(width));
+    put_u32(header, static_cast<std::uint32_t>(height));
     header += std::string("\x08\x02\x00\x00\x00", 5); // 8-bit RGB, deflate, no interlace
     put_chunk(png, "IHDR", header);
 
     const std::size_t idat = begin_chunk(png, "IDAT", idat_size);
     png.append("\x78\x01", 2); // zlib header: deflate, 32 KiB window, fastest
     uLong adler = adler32(0, nullptr, 0);
-    const std::size_t row_bytes = static_cast<std::size_t>(image.width) * 3 + 1; // filter byte
+    const std::size_t row_bytes = static_cast<std::size_t>(width) * 3 + 1; // filter byte
     for (int b = 0; b < bands; ++b) {
         png += deflated[b];
-        const int rows = std::min(image.height, (b + 1) * kRowsPerBand) - b * kRowsPerBand;
-        adler = adler32_combine(adler, adlers[b], static_cast<z_off_t>(row_bytes * rows));
+        const int band_rows = std::min(height, (b + 1) * kRowsPerBand) - b * kRowsPerBand;
+        adler = adler32_combine(adler, adlers[b], static_cast<z_off_t>(row_bytes * band_rows));
     }
     put_u32(png, static_cast<std::uint32_t>(adler));
     end_chunk(png, idat);
     put_chunk(png, "IEND", "");
     return png;
+}
+
+std::string encode_png(const Image& image) {
+    const std::size_t row = static_cast<std::size_t>(image.width) * 3;
+    return encode_png(image.width, image.height,
+                      [&](int y, std::uint8_t* out) { std::copy_n(image.pixel(0, y), row, out); });
+}
+
+void write_png(const std::filesystem::path& path, int width, int height, const PngRows& rows) {
+    write_encoded(path, "PNG", [&] { return encode_png(width, height, rows); });
 }
 
 void write_png(const std::filesystem::path& path, const Image& image) {

@@ -7,11 +7,13 @@
 #include "trace/render.h"
 
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 #include <zlib.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <random>
 
 namespace glint {
@@ -271,6 +273,51 @@ TEST(Output, PngsDecodeToEveryPixelWrittenAtSizesThatSplitIntoBands) {
                   Z_OK)
             << w << "x" << h;
         EXPECT_EQ(raw_size, raw.size());
+    }
+}
+
+TEST(Output, PngsEncodedFromFloatRowsDecodeToTheirBytes) {
+    // glint render quantises a frame's float rows as the bands are deflated (row_bytes through
+    // PngRows), each thread reusing its buffers from band to band. The file must decode
+    // (stb_image) to to_byte (to_srgb_byte) of every value, and be the file encode_png makes of
+    // the 8-bit image, at sizes whose last band is short, on one thread and on two.
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::path(::testing::TempDir()) / "glint_png_rows_test";
+    fs::create_directories(dir);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> colour(-0.25f, 1.25f);
+    for (const auto& [w, h] : {std::pair{1, 1}, {7, 64}, {33, 65}, {300, 200}, {1920, 131}}) {
+        FloatImage image(w, h);
+        for (std::size_t i = 0; i < image.rgb.size(); ++i) {
+            // Halfway values (k + 0.5)/255, NaN and infinities beside random colours.
+            const int kind = static_cast<int>(rng() % 16);
+            image.rgb[i] = kind == 0   ? (static_cast<float>(rng() % 255) + 0.5f) / 255.0f
+                           : kind == 1 ? std::numeric_limits<float>::quiet_NaN()
+                           : kind == 2 ? std::numeric_limits<float>::infinity()
+                                       : colour(rng);
+        }
+        for (const int threads : {1, 2}) {
+            tbb::task_arena arena(threads);
+            for (const bool srgb : {false, true}) {
+                const std::string at = std::to_string(w) + "x" + std::to_string(h) + ", " +
+                                       std::to_string(threads) + " threads, srgb " +
+                                       std::to_string(srgb);
+                const PngRows rows = [&](int y, std::uint8_t* out) {
+                    row_bytes(image, y, srgb, out);
+                };
+                const fs::path path = dir / "rows.png";
+                arena.execute([&] { write_png(path, w, h, rows); });
+                const Image back = read_png(path);
+                ASSERT_EQ(back.width, w);
+                ASSERT_EQ(back.height, h);
+                for (std::size_t i = 0; i < image.rgb.size(); ++i)
+                    ASSERT_EQ(back.rgb[i],
+                              srgb ? to_srgb_byte(image.rgb[i]) : to_byte(image.rgb[i]))
+                        << at << ", value " << i << ": " << image.rgb[i];
+                EXPECT_EQ(arena.execute([&] { return encode_png(w, h, rows); }), encode_png(back))
+                    << at;
+            }
+        }
     }
 }
 

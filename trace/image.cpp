@@ -1,6 +1,5 @@
 #include "trace/image.h"
 
-#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -39,24 +38,29 @@ std::uint8_t to_srgb_byte(float c) {
     return static_cast<std::uint8_t>(static_cast<int>(255.0 * v + 0.5));
 }
 
+void row_bytes(const FloatImage& colour, int y, bool srgb, std::uint8_t* out) {
+    const std::size_t n = static_cast<std::size_t>(colour.width) * 3;
+    const float* in = &colour.rgb[n * static_cast<std::size_t>(y)];
+    if (srgb)
+        for (std::size_t i = 0; i < n; ++i) out[i] = to_srgb_byte(in[i]);
+    else
+        for (std::size_t i = 0; i < n; ++i) out[i] = to_byte(in[i]);
+}
+
 namespace {
 
-// Each channel of `colour` through `encode`, in parallel bands of rows: a frame's bytes are made
-// as it is written.
-template <class Encode> Image encoded(const FloatImage& colour, Encode encode) {
+// The rows of `colour` through row_bytes, in parallel.
+Image encoded(const FloatImage& colour, bool srgb) {
     Image image = Image::uninitialised(colour.width, colour.height);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, colour.rgb.size(), 1 << 16),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t i = r.begin(); i != r.end(); ++i)
-                              image.rgb[i] = encode(colour.rgb[i]);
-                      });
+    tbb::parallel_for(0, colour.height,
+                      [&](int y) { row_bytes(colour, y, srgb, image.pixel(0, y)); });
     return image;
 }
 
 } // namespace
 
 Image to_srgb_bytes(const FloatImage& colour) {
-    return encoded(colour, to_srgb_byte);
+    return encoded(colour, true);
 }
 
 float srgb_to_linear(std::uint8_t byte) {
@@ -72,7 +76,7 @@ float srgb_to_linear(std::uint8_t byte) {
 }
 
 Image to_bytes(const FloatImage& colour) {
-    return encoded(colour, to_byte);
+    return encoded(colour, false);
 }
 
 } // namespace glint

@@ -120,6 +120,11 @@ Image to_bytes(const FloatImage& colour);
 std::uint8_t to_srgb_byte(float c);
 Image to_srgb_bytes(const FloatImage& colour);
 
+// Row y of to_bytes(colour), or of to_srgb_bytes(colour) with `srgb`: its width·3 bytes at
+// `out`. For a writer that encodes a frame row by row (io/png.h's PngRows), with no 8-bit copy
+// of the frame.
+void row_bytes(const FloatImage& colour, int y, bool srgb, std::uint8_t* out);
+
 // The sRGB decoding curve of a byte, as a linear value in [0, 1] (the inverse of the above).
 float srgb_to_linear(std::uint8_t byte);
 
