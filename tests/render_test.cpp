@@ -286,7 +286,7 @@ TEST(Output, PngsEncodedFromFloatRowsDecodeToTheirBytes) {
     fs::create_directories(dir);
     std::mt19937 rng(11);
     std::uniform_real_distribution<float> colour(-0.25f, 1.25f);
-    for (const std::pair<int, int> size :
+    for (const std::pair<int, int>& size :
          {std::pair{1, 1}, {7, 64}, {33, 65}, {300, 200}, {1920, 131}}) {
         // Not a structured binding: the lambdas below capture them, which clang 14 refuses.
         const int w = size.first, h = size.second;
