@@ -245,7 +245,7 @@ RenderedFrame render_by_keywords(const LoadedScene& loaded, const Keywords& give
                               frame_options,
                               world,
                               out.frame,
-                              cutoff_bound(scene, result),
+                              cutoff_summary(scene, result),
                               threads,
                               load_seconds,
                               prepare_seconds,

@@ -275,10 +275,9 @@ enum class PassLayers { all, refinement };
 inline void pack_pixel(const RenderResult& result, const std::vector<std::uint64_t>* keys,
                        std::size_t i, char*& at, PassLayers layers = PassLayers::all) {
     if (layers == PassLayers::refinement)
-        pack_to(PixelRefinement{colour_at(result.radiance, i), result.omitted_weight[i]}, at);
+        pack_to(PixelRefinement{colour_at(result.radiance, i), result.omitted_at(i)}, at);
     else
-        pack_to(PixelFacts{colour_at(result.radiance, i), result.omitted_weight[i], result.ids[i]},
-                at);
+        pack_to(PixelFacts{colour_at(result.radiance, i), result.omitted_at(i), result.ids[i]}, at);
     if (!result.clamped.empty()) pack_to(colour_at(result.clamped, i), at);
     if (layers == PassLayers::refinement) return;
     if (!result.aovs.empty()) {
@@ -306,12 +305,12 @@ inline void unpack_pixel(RenderResult& result, std::vector<std::uint64_t>* keys,
         PixelRefinement refinement;
         unpack(refinement, at, end);
         set_colour(result.radiance, i, refinement.radiance);
-        result.omitted_weight[i] = refinement.omitted_weight;
+        result.set_omitted(i, refinement.omitted_weight);
     } else {
         PixelFacts facts;
         unpack(facts, at, end);
         set_colour(result.radiance, i, facts.radiance);
-        result.omitted_weight[i] = facts.omitted_weight, result.ids[i] = facts.id;
+        result.set_omitted(i, facts.omitted_weight), result.ids[i] = facts.id;
     }
     if (!result.clamped.empty()) {
         PixelColour clamped;

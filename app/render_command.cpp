@@ -396,10 +396,19 @@ int run_render(const RenderArgs& args) {
     write_image(job, frame.result);
     const double write_seconds = phase.seconds();
     const double total_seconds = total.seconds();
-    const RenderReport report{job.scene_path, job.output,  scene,           args.frame,
-                              world,          frame,       cutoff_bound(scene, frame.result),
-                              threads,        load_seconds, prepare_seconds, write_seconds,
-                              total_seconds,  rank_figures};
+    const RenderReport report{job.scene_path,
+                              job.output,
+                              scene,
+                              args.frame,
+                              world,
+                              frame,
+                              cutoff_summary(scene, frame.result),
+                              threads,
+                              load_seconds,
+                              prepare_seconds,
+                              write_seconds,
+                              total_seconds,
+                              rank_figures};
     if (!args.stats.empty()) write_file_atomically(args.stats, stats_json(report).dump(2) + "\n");
     if (!args.aa_map.empty()) write_png(args.aa_map, refinement_map(frame.result));
     print_report(report);

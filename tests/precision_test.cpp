@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <stdexcept>
 
@@ -97,13 +98,59 @@ TEST(Cutoff, TheBoundShrinksWithDepthBetweenFacingMirrors) {
     EXPECT_LE(previous, 1);
 }
 
-// Where nothing reflects, nothing is cut off, whatever the depth.
+// Where nothing reflects, nothing is cut off, whatever the depth: the frame keeps no layer of
+// weights (every one would be 0), its `cutoff` AOV is the image's size and 0, and its empty
+// bound allows no channel to differ from the untruncated render.
 TEST(Cutoff, ASceneWithoutMirrorsHasANullBound) {
     Scene scene = shipped("shadows", 80, 60);
     scene.render.max_depth = 0;
-    const CutoffBound bound = cutoff_bound(scene, ray_render(scene));
+    const RenderResult render = ray_render(scene);
+    EXPECT_TRUE(render.omitted_weight.empty());
+    EXPECT_EQ(render.omitted_at(17), 0.0f);
+    const CutoffBound bound = cutoff_bound(scene, render);
     EXPECT_EQ(bound.max, 0);
+    EXPECT_EQ(bound.pixels_over_one, 0u);
     EXPECT_EQ(bound.largest_omitted_weight, 0.0);
+    const std::vector<float> aov = cutoff_radiance(scene, render);
+    EXPECT_EQ(aov.size(), std::size_t{80 * 60});
+    EXPECT_EQ(std::count(aov.begin(), aov.end(), 0.0f), 80 * 60);
+
+    const Image truncated = render.bytes();
+    Image other = truncated;
+    EXPECT_EQ(cutoff_violations(bound, truncated, other), 0u);
+    other.rgb[3 * 1234 + 2] ^= 1; // one channel of one pixel, 1/255 apart
+    EXPECT_EQ(cutoff_violations(bound, truncated, other), 1u);
+}
+
+// One material that reflects, or one that transmits, is enough for the frame to keep the
+// layer, even at depth 0, where every such ray is omitted.
+TEST(Cutoff, AnyReflectingOrTransmittingMaterialKeepsTheWeights) {
+    for (const bool glass : {false, true}) {
+        Scene scene = shipped("shadows", 40, 30);
+        scene.render.max_depth = 0;
+        Material& m = scene.materials.back();
+        (glass ? m.transmission : m.reflectivity) = 0.5f;
+        const RenderResult render = ray_render(scene);
+        ASSERT_EQ(render.omitted_weight.size(), std::size_t{40 * 30}) << "glass " << glass;
+        EXPECT_GT(cutoff_bound(scene, render).largest_omitted_weight, 0.0) << "glass " << glass;
+    }
+}
+
+// The report's summary is the bound's figures, without its bytes per pixel.
+TEST(Cutoff, TheSummaryHasTheBoundsFigures) {
+    Scene scene = shipped("mirrors", 120, 90);
+    for (const int depth : {0, 2, 6}) {
+        scene.render.max_depth = depth;
+        const RenderResult render = ray_render(scene);
+        const CutoffBound bound = cutoff_bound(scene, render);
+        const CutoffBound summary = cutoff_summary(scene, render);
+        EXPECT_EQ(bound.per_pixel.size(), std::size_t{120 * 90});
+        EXPECT_GT(bound.max, 0) << "depth " << depth;
+        EXPECT_TRUE(summary.per_pixel.empty());
+        EXPECT_EQ(summary.max, bound.max) << "depth " << depth;
+        EXPECT_EQ(summary.pixels_over_one, bound.pixels_over_one) << "depth " << depth;
+        EXPECT_EQ(summary.largest_omitted_weight, bound.largest_omitted_weight);
+    }
 }
 
 } // namespace

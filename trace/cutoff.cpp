@@ -30,11 +30,16 @@ glm::dvec3 ray_radiance_bound(const Scene& scene) {
     return {local.x > 0 ? inf : 0, local.y > 0 ? inf : 0, local.z > 0 ? inf : 0};
 }
 
-CutoffBound cutoff_bound(const Scene& scene, const RenderResult& render) {
+namespace {
+
+// The bound's extremes, and its per-pixel steps where `per_pixel`.
+CutoffBound bound_of(const Scene& scene, const RenderResult& render, bool per_pixel) {
+    CutoffBound bound;
+    // No layer: no material reflects or transmits, so no ray was omitted and the bound is 0.
+    if (render.omitted_weight.empty()) return bound;
     const glm::dvec3 radiance = ray_radiance_bound(scene);
     const FloatImage& display = render.display();
-    CutoffBound bound;
-    bound.per_pixel.assign(render.omitted_weight.size(), 0);
+    if (per_pixel) bound.per_pixel.assign(render.omitted_weight.size(), 0);
     // In parallel bands of pixels (it runs after the frame's write, outside every timed phase:
     // docs/PERFORMANCE.md, "Start-up and the write"), each band's extremes joined after.
     struct Extremes {
@@ -55,7 +60,7 @@ CutoffBound cutoff_bound(const Scene& scene, const RenderResult& render) {
                 const double steps = std::ceil(255 * weight * radiance[c] * (1 + 1e-6));
                 pixel = std::max(pixel, steps < headroom ? static_cast<int>(steps) : headroom);
             }
-            bound.per_pixel[i] = static_cast<std::uint8_t>(pixel);
+            if (per_pixel) bound.per_pixel[i] = static_cast<std::uint8_t>(pixel);
             partial.max = std::max(partial.max, pixel);
             partial.pixels_over_one += pixel > 1;
         }
@@ -74,11 +79,21 @@ CutoffBound cutoff_bound(const Scene& scene, const RenderResult& render) {
     return bound;
 }
 
+} // namespace
+
+CutoffBound cutoff_bound(const Scene& scene, const RenderResult& render) {
+    return bound_of(scene, render, true);
+}
+
+CutoffBound cutoff_summary(const Scene& scene, const RenderResult& render) {
+    return bound_of(scene, render, false);
+}
+
 std::vector<float> cutoff_radiance(const Scene& scene, const RenderResult& render) {
     const glm::dvec3 radiance = ray_radiance_bound(scene);
     const double most = std::max({radiance.x, radiance.y, radiance.z});
-    std::vector<float> out(render.omitted_weight.size(), 0.0f);
-    for (std::size_t i = 0; i < out.size(); ++i)
+    std::vector<float> out(render.pixels(), 0.0f);
+    for (std::size_t i = 0; i < render.omitted_weight.size(); ++i)
         if (render.omitted_weight[i] > 0) out[i] = static_cast<float>(render.omitted_weight[i] * most);
     return out;
 }
@@ -86,11 +101,13 @@ std::vector<float> cutoff_radiance(const Scene& scene, const RenderResult& rende
 std::uint64_t cutoff_violations(const CutoffBound& bound, const Image& truncated,
                                 const Image& untruncated) {
     std::uint64_t violations = 0;
-    for (std::size_t i = 0; i < bound.per_pixel.size(); ++i)
+    for (std::size_t i = 0; i < truncated.rgb.size() / 3; ++i) {
+        const int allowed = bound.per_pixel.empty() ? 0 : bound.per_pixel[i];
         for (int c = 0; c < 3; ++c) {
             const int below = untruncated.rgb[3 * i + c] - truncated.rgb[3 * i + c];
-            violations += below < 0 || below > bound.per_pixel[i];
+            violations += below < 0 || below > allowed;
         }
+    }
     return violations;
 }
 

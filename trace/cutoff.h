@@ -25,6 +25,8 @@ struct CutoffBound {
     // Per pixel, in 1/255 steps: how far the pixel may be below its untruncated value. The
     // omitted term is never negative, so the truncated pixel is never above it, and a channel
     // already at 255 cannot rise: min(255 − value, ceil(255 · weight · bound)) over channels.
+    // Empty where every pixel's is 0 (no material reflects or transmits), or where only the
+    // figures below were asked for (cutoff_summary).
     std::vector<std::uint8_t> per_pixel;
     int max = 0;                       // largest per_pixel
     std::uint64_t pixels_over_one = 0; // pixels whose bound exceeds 1/255
@@ -32,6 +34,9 @@ struct CutoffBound {
 };
 
 CutoffBound cutoff_bound(const Scene& scene, const RenderResult& render);
+// Its figures alone (max, pixels_over_one, largest_omitted_weight), per_pixel left empty: what
+// a render's report prints, without a byte a pixel to first-touch after the write.
+CutoffBound cutoff_summary(const Scene& scene, const RenderResult& render);
 
 // Per pixel, in radiance: the most the omitted rays could have added to any channel of the
 // pixel's unclamped colour (its summed omitted weight times the largest channel of
@@ -40,7 +45,8 @@ CutoffBound cutoff_bound(const Scene& scene, const RenderResult& render);
 std::vector<float> cutoff_radiance(const Scene& scene, const RenderResult& render);
 
 // Channels of `truncated` (the render the bound was made for) not within [0, bound] below the
-// same render untruncated (same rays, no cut-off): 0 when the bound holds.
+// same render untruncated (same rays, no cut-off): 0 when the bound holds. An empty per_pixel
+// bounds every pixel by 0.
 std::uint64_t cutoff_violations(const CutoffBound& bound, const Image& truncated,
                                 const Image& untruncated);
 

@@ -104,7 +104,7 @@ TileFigures grids_tile(const World& world, const PrimarySource& source,
         const int x = static_cast<int>(i % width), y = static_cast<int>(i / width);
         const GridPixel pixel = shade_grid(world, x, y, &hits[k * grid]);
         store_pixel(result, i, pixel.radiance, pixel.mean);
-        result.omitted_weight[i] = static_cast<float>(pixel.omitted_weight);
+        result.set_omitted(i, static_cast<float>(pixel.omitted_weight));
         if (!only && !result.ids.empty()) result.ids[i] = pixel.centre_id;
         figures.rays += pixel.rays;
     }
@@ -147,7 +147,7 @@ void copy_bytes(const FloatImage& colour, const std::vector<std::uint8_t>& which
 RenderResult run_frame(const World& world, const PrimarySource& source, PrimaryStats& stats,
                        TileSchedule& schedule, PhaseTimes& times, const FrameRequest& request) {
     const RenderSettings& settings = world.settings();
-    RenderResult result = blank_result(world.camera(), settings.samples, request);
+    RenderResult result = blank_result(world, settings.samples, request);
     const bool uniform = settings.samples > 1 && settings.antialias == Antialias::uniform;
     const bool adaptive = settings.samples > 1 && !uniform;
     const auto grids = [&](FramePass pass, const std::vector<std::uint8_t>* only) {
@@ -160,7 +160,7 @@ RenderResult run_frame(const World& world, const PrimarySource& source, PrimaryS
     };
 
     if (!uniform || request.centres_first) {
-        std::vector<std::uint64_t> path_keys(adaptive ? result.omitted_weight.size() : 0);
+        std::vector<std::uint64_t> path_keys(adaptive ? result.pixels() : 0);
         std::vector<std::uint64_t>* keys = adaptive ? &path_keys : nullptr;
         if (!run_pass(schedule, FramePass::centres, result, stats, times, keys, nullptr,
                       [&](const TileRect& r) {

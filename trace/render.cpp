@@ -11,7 +11,7 @@ inline namespace GLINT_PRECISION {
 
 RenderResult shade_image(const World& world, const std::vector<Hit>& primary,
                          const TileProgress& progress, std::vector<std::uint64_t>* path_keys) {
-    RenderResult result = blank_result(world.camera(), 1, {});
+    RenderResult result = blank_result(world, 1, {});
     if (path_keys) path_keys->assign(primary.size(), 0);
     std::mutex counts_mutex;
     for_each_tile(result.radiance.width, result.radiance.height, progress,

@@ -58,7 +58,9 @@ struct RenderResult {
     FloatImage clamped;
     RayCounts rays;
     // The summed path weights of the reflected and transmitted rays that max_depth or
-    // min_reflectivity kept from being cast, 0 where none was (trace/cutoff.h).
+    // min_reflectivity kept from being cast, 0 where none was (trace/cutoff.h). Empty where no
+    // material reflects or transmits (SceneGeometry::secondary), so every weight would be 0:
+    // read it by omitted_at.
     FrameLayer<float> omitted_weight;
     // The primary hit's object index + 1, 0 for background: of the pixel centre, or with an
     // N×N grid of its sample (N/2, N/2) (the centre when N is odd). Empty where the frame was
@@ -71,6 +73,16 @@ struct RenderResult {
     // The tile loops the frame took: centres, grids, each round of adaptive spreading (on MPI
     // ranks, one exchange each).
     int passes = 0;
+
+    // Pixel i's omitted weight, 0 where the frame keeps no such layer.
+    float omitted_at(std::size_t i) const {
+        return omitted_weight.empty() ? 0.0f : omitted_weight[i];
+    }
+    // Sets it, where the frame keeps the layer.
+    void set_omitted(std::size_t i, float weight) {
+        if (!omitted_weight.empty()) omitted_weight[i] = weight;
+    }
+    std::size_t pixels() const { return radiance.rgb.size() / 3; }
 
     // The colour a display shows, each channel clamped to [0, 1].
     const FloatImage& display() const { return clamped.empty() ? radiance : clamped; }

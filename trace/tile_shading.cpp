@@ -5,14 +5,14 @@
 namespace glint {
 inline namespace GLINT_PRECISION {
 
-RenderResult blank_result(const PinholeCamera& camera, int samples, const FrameRequest& request) {
-    const int width = camera.width(), height = camera.height();
+RenderResult blank_result(const World& world, int samples, const FrameRequest& request) {
+    const int width = world.camera().width(), height = world.camera().height();
     const std::size_t pixels = static_cast<std::size_t>(width) * height;
     RenderResult result;
     // Every pixel is written by the frame's passes (or, on MPI ranks, by the exchange).
     result.radiance = FloatImage::uninitialised(width, height);
     if (samples > 1) result.clamped = FloatImage::uninitialised(width, height);
-    result.omitted_weight.resize(pixels);
+    if (world.geometry()->secondary) result.omitted_weight.resize(pixels);
     if (request.ids) result.ids.resize(pixels);
     if (request.aovs) result.aovs = PrimaryAovs(pixels);
     return result;
@@ -45,7 +45,7 @@ RayCounts shade_tile(const World& world, const Hit* primary, std::size_t stride,
     for (std::size_t k = 0; k < pixels.size(); ++k) {
         const std::size_t i = pixels[k];
         const PixelSample sample = shade_pixel(world, rays[k], hits[k], lighting.at(k));
-        result.omitted_weight[i] = static_cast<float>(sample.omitted_weight);
+        result.set_omitted(i, static_cast<float>(sample.omitted_weight));
         if (!result.ids.empty()) result.ids[i] = hits[k].found() ? hits[k].object + 1 : 0;
         if (path_keys) (*path_keys)[i] = sample.path_key;
         store_pixel(result, i, sample.colour, glm::clamp(sample.colour, Vec3(0), Vec3(1)));

@@ -42,9 +42,10 @@ inline void store_aovs(RenderResult& result, std::size_t i, const Hit& hit, Vec3
 
 struct FrameRequest; // trace/passes.h
 
-// An empty result for `camera`'s image: the clamped image where a pixel's samples are N > 1,
-// the AOVs and the ids where `request` asks for them.
-RenderResult blank_result(const PinholeCamera& camera, int samples, const FrameRequest& request);
+// An empty result for `world`'s image: the clamped image where a pixel's samples are N > 1,
+// the cut-off weights where a material reflects or transmits, the AOVs and the ids where
+// `request` asks for them.
+RenderResult blank_result(const World& world, int samples, const FrameRequest& request);
 
 // A worker thread's buffers for the tile it works on, kept from tile to tile (tile_buffers()).
 // Allocated anew for each tile, they cost small scenes up to two thirds of their shading time:

@@ -53,6 +53,7 @@ SceneGeometry::SceneGeometry(const Scene& scene) : textures(scene.textures) {
                              cut_out, Vec3(m.emission), texture(m.emission_texture),
                              texture(m.normal_texture), m.normal_scale});
         transmissive |= m.transmission > 0;
+        secondary |= m.reflectivity > 0 || m.transmission > 0;
     }
     const Stopwatch watch;
     for (const TriangleMesh& mesh : scene.meshes) meshes.push_back(prepare_mesh(mesh));

@@ -102,6 +102,9 @@ struct SceneGeometry {
     std::vector<Texture> textures; // what Phong::texture points into
     std::vector<Phong> materials;
     bool transmissive = false; // some material transmits: shadow rays must count crossings
+    // Some material reflects or transmits: a hit may cast a secondary ray, or omit one (the
+    // frame's cut-off weights, trace/cutoff.h). Without one, every omitted weight is 0.
+    bool secondary = false;
     double build_seconds = 0;  // the meshes' BVHs
 };
 
