@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -146,6 +147,41 @@ TEST_P(ResolveTest, AFrameFromSpoiledIdsIsRayModesFrame) {
         EXPECT_EQ(hybrid.ids, ray.ids) << what;
         EXPECT_EQ(hybrid.aovs.depth, ray.aovs.depth) << what;
         EXPECT_EQ(hybrid.aovs.normal, ray.aovs.normal) << what;
+    }
+}
+
+// A tile's primary hits hand their camera rays on to its shading (trace/passes.cpp): each kept
+// ray is the camera's own for its pixel, bit for bit, in ray mode and from the item buffer
+// (exact and trust, spoiled ids: pixels resolved alone, blocks as one packet, the background),
+// and keeping them changes no hit. The tile is cut off at the image's edge and its rows are
+// strided as a frame-wide buffer's.
+TEST_P(ResolveTest, APixelsKeptCameraRayIsTheCamerasRay) {
+    const Scene s = scene();
+    const World world(s);
+    const PinholeCamera& camera = world.camera();
+    const IdImage ids = synthetic_ids(world, 1, Spoil::mixed);
+    const TileRect tile{5, 3, camera.width(), camera.height() - 1};
+    const auto stride = static_cast<std::size_t>(camera.width());
+    const auto same_ray = [](const Ray& a, const Ray& b) {
+        return std::memcmp(&a.origin, &b.origin, sizeof a.origin) == 0 &&
+               std::memcmp(&a.direction, &b.direction, sizeof a.direction) == 0;
+    };
+    for (const PrimarySource source : {PrimarySource{}, PrimarySource{&ids, Resolve::exact},
+                                       PrimarySource{&ids, Resolve::trust}}) {
+        const std::size_t n = stride * static_cast<std::size_t>(tile.y1 - tile.y0);
+        std::vector<Hit> alone(n), kept(n);
+        std::vector<Ray> rays(n);
+        PrimaryStats stats;
+        tile_primary_hits(world, source, tile, alone.data(), stride, stats);
+        tile_primary_hits(world, source, tile, kept.data(), stride, stats, rays.data());
+        for (int y = tile.y0; y < tile.y1; ++y)
+            for (int x = tile.x0; x < tile.x1; ++x) {
+                const std::size_t at = static_cast<std::size_t>(y - tile.y0) * stride +
+                                       static_cast<std::size_t>(x - tile.x0);
+                ASSERT_TRUE(same_ray(rays[at], camera.ray(x, y))) << x << ", " << y;
+                ASSERT_EQ(kept[at].object, alone[at].object) << x << ", " << y;
+                ASSERT_EQ(kept[at].t, alone[at].t) << x << ", " << y;
+            }
     }
 }
 

@@ -36,20 +36,23 @@ struct TileFigures {
     double primary = 0, shading = 0;
 };
 
-// The centres pass on one tile: its primary hits, kept for the tile alone in the thread's tile
-// buffers (a frame's worth would cost a whole image of first-touched pages before the pass),
-// then its pixels shaded.
+// The centres pass on one tile: its primary hits and their camera rays, kept for the tile alone
+// in the thread's tile buffers (a frame's worth would cost a whole image of first-touched pages
+// before the pass), then its pixels shaded.
 TileFigures centres_tile(const World& world, const PrimarySource& source, const TileRect& r,
                          RenderResult& result, std::vector<std::uint64_t>* keys,
                          CentreObserver* observer) {
     TileFigures figures;
     Stopwatch watch;
     const std::size_t stride = static_cast<std::size_t>(r.x1 - r.x0);
-    std::vector<Hit>& primary = tile_buffers().primary;
-    primary.resize(r.pixels()); // each one written by tile_primary_hits
-    tile_primary_hits(world, source, r, primary.data(), stride, figures.stats);
+    TileBuffers& buffers = tile_buffers();
+    std::vector<Hit>& primary = buffers.primary;
+    std::vector<Ray>& rays = buffers.primary_rays;
+    primary.resize(r.pixels()), rays.resize(r.pixels()); // each one written by tile_primary_hits
+    tile_primary_hits(world, source, r, primary.data(), stride, figures.stats, rays.data());
     figures.primary = watch.lap();
-    figures.rays = shade_tile(world, primary.data(), stride, r, result, keys, observer);
+    figures.rays =
+        shade_tile(world, primary.data(), stride, r, result, keys, observer, rays.data());
     figures.shading = watch.lap();
     return figures;
 }

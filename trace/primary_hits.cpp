@@ -251,7 +251,7 @@ Hit resolve_pixel(const World& world, const IdImage& ids, Resolve resolve, int x
 }
 
 void tile_primary_hits(const World& world, const PrimarySource& source, const TileRect& r,
-                       Hit* hits, std::size_t stride, PrimaryStats& stats) {
+                       Hit* hits, std::size_t stride, PrimaryStats& stats, Ray* rays) {
     const PinholeCamera& camera = world.camera();
     // Pixel (x, y)'s place in `hits`.
     const auto at = [&](int x, int y) {
@@ -261,16 +261,18 @@ void tile_primary_hits(const World& world, const PrimarySource& source, const Ti
     if (!source.ids) { // ray mode: the tile's camera rays in packets of a block each
         for (int by = r.y0; by < r.y1; by += kBlockSize) {
             for (int bx = r.x0; bx < r.x1; bx += kBlockSize) {
-                Ray rays[kMaxPacket];
+                Ray packet[kMaxPacket];
                 Hit block[kMaxPacket];
                 std::size_t pixel[kMaxPacket], count = 0;
                 for_each_in_blocks(bx, by, std::min(bx + kBlockSize, r.x1),
                                    std::min(by + kBlockSize, r.y1), [&](int x, int y) {
                                        pixel[count] = at(x, y);
-                                       rays[count++] = camera.ray(x, y);
+                                       packet[count++] = camera.ray(x, y);
                                    });
-                world.intersect_packet({rays, count}, block);
+                world.intersect_packet({packet, count}, block);
                 for (std::size_t k = 0; k < count; ++k) hits[pixel[k]] = block[k];
+                if (rays)
+                    for (std::size_t k = 0; k < count; ++k) rays[pixel[k]] = packet[k];
             }
         }
         return;
@@ -282,25 +284,33 @@ void tile_primary_hits(const World& world, const PrimarySource& source, const Ti
         for (int bx = r.x0; bx < r.x1; bx += kBlockSize) {
             const int x1 = std::min(bx + kBlockSize, r.x1), y1 = std::min(by + kBlockSize, r.y1);
             const auto pixel = [&](int x, int y) {
+                const auto make_ray = [&] { return camera.ray(x, y); };
+                if (!rays) {
+                    hits[at(x, y)] =
+                        resolve_with(world, ids, source.resolve, x, y, make_ray, stats);
+                    return;
+                }
+                const Ray& ray = rays[at(x, y)] = make_ray();
                 hits[at(x, y)] = resolve_with(
-                    world, ids, source.resolve, x, y, [&] { return camera.ray(x, y); }, stats);
+                    world, ids, source.resolve, x, y, [&] { return ray; }, stats);
             };
             const std::uint32_t id = ids.ids[static_cast<std::size_t>(by) * ids.width + bx];
             if (id == 0 || !one_object(ids, bx, by, x1, y1, id)) {
                 for_each_in_blocks(bx, by, x1, y1, pixel);
                 continue;
             }
-            Ray rays[kMaxPacket];
+            Ray packet[kMaxPacket];
             Hit named[kMaxPacket];
             std::size_t count = 0;
             for_each_in_blocks(bx, by, x1, y1,
-                               [&](int x, int y) { rays[count++] = camera.ray(x, y); });
-            world.intersect_one_packet(id - 1, {rays, count}, named);
+                               [&](int x, int y) { packet[count++] = camera.ray(x, y); });
+            world.intersect_one_packet(id - 1, {packet, count}, named);
             count = 0;
             for_each_in_blocks(bx, by, x1, y1, [&](int x, int y) {
                 const std::size_t k = count++;
                 hits[at(x, y)] = resolve_with(
-                    world, ids, source.resolve, x, y, [&] { return rays[k]; }, stats, &named[k]);
+                    world, ids, source.resolve, x, y, [&] { return packet[k]; }, stats, &named[k]);
+                if (rays) rays[at(x, y)] = packet[k];
             });
         }
     }

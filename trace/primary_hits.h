@@ -105,9 +105,11 @@ inline Hit primary_hit(const World& world, const PrimarySource& source, int x, i
 
 // The primary hits of tile r: camera rays in packets (ray mode) or the id image resolved
 // (hybrid); pixel (x, y)'s into hits[(y − r.y0)·stride + (x − r.x0)] (a tile's own buffer, or
-// the whole image's at the tile's corner with stride = the image's width).
+// the whole image's at the tile's corner with stride = the image's width). Where `rays` is
+// given, each pixel's camera ray goes to the same place in it, for the shading that follows
+// (shade_tile), so that no pixel's ray is made twice.
 void tile_primary_hits(const World& world, const PrimarySource& source, const TileRect& r,
-                       Hit* hits, std::size_t stride, PrimaryStats& stats);
+                       Hit* hits, std::size_t stride, PrimaryStats& stats, Ray* rays = nullptr);
 
 // Every pixel's primary hit from `source`, row-major, top row first.
 std::vector<Hit> primary_hits(const World& world, const PrimarySource& source, PrimaryStats& stats,

@@ -25,7 +25,7 @@ TileBuffers& tile_buffers() {
 
 RayCounts shade_tile(const World& world, const Hit* primary, std::size_t stride, const TileRect& r,
                      RenderResult& result, std::vector<std::uint64_t>* path_keys,
-                     CentreObserver* observer) {
+                     CentreObserver* observer, const Ray* camera_rays) {
     const PinholeCamera& camera = world.camera();
     const int width = camera.width();
     TileBuffers& buffers = tile_buffers();
@@ -34,10 +34,11 @@ RayCounts shade_tile(const World& world, const Hit* primary, std::size_t stride,
     std::vector<Hit>& hits = buffers.hits;
     pixels.clear(), rays.clear(), hits.clear();
     for_each_in_blocks(r.x0, r.y0, r.x1, r.y1, [&](int x, int y) {
+        const std::size_t at =
+            static_cast<std::size_t>(y - r.y0) * stride + static_cast<std::size_t>(x - r.x0);
         pixels.push_back(static_cast<std::size_t>(y) * width + x);
-        rays.push_back(camera.ray(x, y));
-        hits.push_back(primary[static_cast<std::size_t>(y - r.y0) * stride +
-                               static_cast<std::size_t>(x - r.x0)]);
+        rays.push_back(camera_rays ? camera_rays[at] : camera.ray(x, y));
+        hits.push_back(primary[at]);
     });
     TileLighting& lighting = buffers.lighting;
     lighting.prepare(world, rays, hits, world.settings().packet_levels);

@@ -54,6 +54,7 @@ RenderResult blank_result(const World& world, int samples, const FrameRequest& r
 // (docs/PERFORMANCE.md, "Tile buffers and huge pages").
 struct TileBuffers {
     std::vector<Hit> primary;        // the centres pass: the tile's primary hits
+    std::vector<Ray> primary_rays;   // and their camera rays
     std::vector<std::size_t> pixels; // the pixels being shaded, in the order shaded
     std::vector<Ray> rays;           // their camera rays
     std::vector<Hit> hits;           // their primary hits (the grids pass: grid after grid)
@@ -68,10 +69,11 @@ TileBuffers& tile_buffers();
 // (x − r.x0)], as tile_primary_hits leaves them) into `result`: colour, cut-off weight, id, AOVs
 // where kept, and with `path_keys` each pixel's RayTree::path_key; shows each to `observer`
 // where given. Returns the rays cast. The pixels go in blocks, so that their shadow rays go in
-// packets of neighbours (TileLighting).
+// packets of neighbours (TileLighting). Their camera rays are read from `camera_rays` (laid out
+// as `primary`) where tile_primary_hits kept them, else made again.
 RayCounts shade_tile(const World& world, const Hit* primary, std::size_t stride, const TileRect& r,
                      RenderResult& result, std::vector<std::uint64_t>* path_keys,
-                     CentreObserver* observer = nullptr);
+                     CentreObserver* observer = nullptr, const Ray* camera_rays = nullptr);
 
 } // namespace GLINT_PRECISION
 } // namespace glint
