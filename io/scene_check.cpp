@@ -19,15 +19,23 @@ class Check {
         throw SceneError(places_(path) + ": " + message);
     }
 
+    static bool within(double v, double lo, double hi) { return v >= lo && v <= hi; }
+
     void range(const std::string& path, double v, double lo, double hi) const {
-        if (v >= lo && v <= hi) return;
+        if (within(v, lo, hi)) return;
         std::ostringstream text;
         text << "must be between " << lo << " and " << hi << ", got " << v;
         fail(path, text.str());
     }
 
     // A position: within ±kMaxCoordinate, so that differences and their squares stay finite.
+    static bool bounded(const DVec3& p) {
+        return std::abs(p.x) <= kMaxCoordinate && std::abs(p.y) <= kMaxCoordinate &&
+               std::abs(p.z) <= kMaxCoordinate;
+    }
+
     void point(const std::string& path, const DVec3& p) const {
+        if (bounded(p)) return;
         for (int i = 0; i < 3; ++i)
             if (!(std::abs(p[i]) <= kMaxCoordinate))
                 fail(path + "/" + std::to_string(i), "coordinates must be within ±1e15");
@@ -94,13 +102,16 @@ class Check {
         if (mesh.triangles.size() > kMaxMeshTriangles)
             fail(path + "/indices", "has more triangles than the limit of " +
                                         std::to_string(kMaxMeshTriangles));
+        // An element's path is spelt out only for a message: a mesh has up to millions of them.
         for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
-            point(path + "/vertices/" + std::to_string(v), DVec3(mesh.vertices[v]));
+            if (const DVec3 p(mesh.vertices[v]); !bounded(p))
+                point(path + "/vertices/" + std::to_string(v), p);
         const double last = static_cast<double>(mesh.vertices.size()) - 1;
         for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
             for (int c = 0; c < 3; ++c)
-                range(path + "/indices/" + std::to_string(3 * t + static_cast<std::size_t>(c)),
-                      mesh.triangles[t][c], 0, last);
+                if (const double index = mesh.triangles[t][c]; !within(index, 0, last))
+                    range(path + "/indices/" + std::to_string(3 * t + static_cast<std::size_t>(c)),
+                          index, 0, last);
         if (!mesh.normals.empty() && mesh.normals.size() != mesh.vertices.size())
             fail(path + "/normals", "has " + std::to_string(mesh.normals.size()) +
                                         " normals for " + std::to_string(mesh.vertices.size()) +
