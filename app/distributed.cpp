@@ -59,10 +59,17 @@ int ranks() {
 
 namespace {
 
+// Set once this rank's work is done (finish_ranks): nothing is left to say or to remove.
+volatile std::sig_atomic_t finished_ = 0;
+
 // mpirun ends every rank with SIGTERM when one is lost (killed, crashed) or the run is
 // interrupted: rank 0 says so in one line, and whatever rank removes the temporary file of an
-// output it was writing (io/write_file.h), then ends as SIGTERM would have ended it.
+// output it was writing (io/write_file.h), then ends as SIGTERM would have ended it. Once the
+// rank has finished, the signal is let pass: a rank that leaves with a non-zero code (an error
+// every rank agreed on, which rank 0 has already reported) makes mpirun end the others, and
+// that must not add "a rank was lost" to the report, nor take this rank's own exit code.
 void on_terminate(int) {
+    if (finished_) return;
     if (rank_ == 0) {
         static const char message[] =
             "glint: error: rank 0: mpirun is ending the run (a rank was lost, or the run was "
@@ -96,7 +103,11 @@ int start_ranks() {
 }
 
 void finish_ranks() {
-    if (joined_) MPI_Finalize();
+    if (!joined_) return;
+    finished_ = 1;
+    // No rank leaves before every rank has come this far (rank 0 may still be reporting).
+    MPI_Barrier(MPI_COMM_WORLD);
+    MPI_Finalize();
     joined_ = false;
 }
 
