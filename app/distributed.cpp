@@ -4,6 +4,7 @@
 #include "io/error.h"
 #include "io/write_file.h"
 
+#include <cerrno>
 #include <chrono>
 #include <climits>
 #include <csignal>
@@ -11,10 +12,11 @@
 #include <cstdlib>
 #include <cstring>
 #include <deque>
+#include <filesystem>
 #include <mutex>
 #include <numeric>
-#include <unistd.h>
 #include <thread>
+#include <unistd.h>
 
 #ifdef GLINT_HAVE_MPI
 #include <mpi.h>
@@ -39,12 +41,6 @@ int launched_ranks() {
 }
 
 int rank_ = 0, ranks_ = 1;
-bool joined_ = false;
-
-// The exit code a single run gives for an exception (guarded(), app/options.cpp).
-int exit_code_of(const std::exception& e) {
-    return dynamic_cast<const UsageError*>(&e) || dynamic_cast<const SceneError*>(&e) ? 2 : 1;
-}
 
 } // namespace
 
@@ -58,6 +54,13 @@ int ranks() {
 #ifdef GLINT_HAVE_MPI
 
 namespace {
+
+bool joined_ = false;
+
+// The exit code a single run gives for an exception (guarded(), app/options.cpp).
+int exit_code_of(const std::exception& e) {
+    return dynamic_cast<const UsageError*>(&e) || dynamic_cast<const SceneError*>(&e) ? 2 : 1;
+}
 
 // Set once this rank's work is done (finish_ranks): nothing is left to say or to remove.
 volatile std::sig_atomic_t finished_ = 0;
@@ -83,7 +86,7 @@ void on_terminate(int) {
 
 } // namespace
 
-int start_ranks() {
+int start_ranks(char**) {
     if (launched_ranks() <= 1) return -1;
     std::signal(SIGTERM, on_terminate);
     // Worker threads claim tiles (MPI_Fetch_and_op), one at a time under a mutex.
@@ -471,16 +474,28 @@ void sum_over_ranks(FrameCounters& counters) {
     for_each_field(counters, [&](const std::string&, std::uint64_t& value) { value = values[k++]; });
 }
 
-#else // a build without MPI: one process, always
+#else // the program without MPI (glint): one process; under mpirun it becomes glint-mpi
 
-int start_ranks() {
+int start_ranks(char** argv) {
     if (launched_ranks() <= 1) return -1;
+    // mpirun started this process among others: it becomes the program built beside it with
+    // Open MPI, the same commands (the same process to mpirun; execv returns only on failure).
+    std::error_code error;
+    const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
+    const std::filesystem::path mpi_program = self.parent_path() / "glint-mpi";
+    if (!error && std::filesystem::exists(mpi_program, error)) {
+        ::execv(mpi_program.c_str(), argv);
+        if (launched_rank() == 0)
+            std::fprintf(stderr, "glint: error: started by mpirun: cannot run %s: %s\n",
+                         mpi_program.c_str(), std::strerror(errno));
+        return 2;
+    }
     if (launched_rank() == 0)
         std::fprintf(stderr,
                      "glint: error: started by mpirun with %d ranks, but this glint was "
-                     "built without MPI (install libopenmpi-dev and build again; "
-                     "./glint does both)\n",
-                     launched_ranks());
+                     "built without MPI: no %s beside it (install libopenmpi-dev and build "
+                     "again; ./glint does both)\n",
+                     launched_ranks(), mpi_program.c_str());
     return 2;
 }
 

@@ -2,8 +2,12 @@
 // `glint tradeoff` sweep spread over ranks, one setting per rank at a time). Every rank
 // loads the scene and builds its own structures; tiles are handed out as ranks ask for them
 // (trace/tiles.h's TileExchange) and gathered on rank 0 after each pass; rank 0 decides what a
-// later pass refines, writes the PNG and prints the report. Without mpirun, or in a build without MPI, glint is one process as always:
-// nothing here is called but the checks.
+// later pass refines, writes the PNG and prints the report.
+//
+// app/distributed.cpp is compiled twice (app/CMakeLists.txt): into glint, the Python module and the
+// fuzzer without MPI, where everything here is one process and nothing loads Open MPI's libraries
+// (3 ms of every start), and into glint-mpi with it. glint started by mpirun becomes glint-mpi,
+// built beside it, before it reads its arguments (start_ranks).
 #pragma once
 
 #include "app/rank_records.h"
@@ -18,10 +22,11 @@
 
 namespace glint {
 
-// Called first thing in main(): when mpirun started this process with others, joins them (MPI
-// initialised); a build without MPI refuses (exit 2, one message). Returns an exit code to stop
-// with, or -1 to go on.
-int start_ranks();
+// Called first thing in main(), with its argv: when mpirun started this process with others,
+// glint-mpi joins them (MPI initialised) and glint runs glint-mpi in its place with the same
+// arguments, or, where no glint-mpi was built beside it, refuses (exit 2, one message). Returns
+// an exit code to stop with, or -1 to go on.
+int start_ranks(char** argv);
 // Called last: leaves MPI, if it was joined.
 void finish_ranks();
 

@@ -38,7 +38,7 @@ bool kernel_choice_stands() {
 } // namespace
 
 int main(int argc, char** argv) {
-    if (const int code = glint::start_ranks(); code >= 0) return code;
+    if (const int code = glint::start_ranks(argv); code >= 0) return code;
     glint::Cli cli;
     int code = 0;
     try {

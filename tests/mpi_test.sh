@@ -8,7 +8,8 @@
 #                                           sample and uniform 2x2 too (each mpirun costs about
 #                                           0.5 s of MPI start-up, hence one run a pair); NP 2
 #                                           also checks that `mpirun -np 1` is one process
-#   mpi_test.sh GLINT MPIRUN bad-input      bad input on the ranks: exit 2, one message, no file
+#   mpi_test.sh GLINT MPIRUN bad-input      bad input on the ranks: exit 2, one message, no file;
+#                                           glint with no glint-mpi beside it refuses so too
 #   mpi_test.sh GLINT MPIRUN tradeoff       a sweep spread over 2 ranks gives the single process's
 #                                           CSV, timings (and the Pareto marks they decide) aside
 #   mpi_test.sh GLINT MPIRUN killed-rank    a rank that dies mid-frame (SIGKILL at a given tile,
@@ -101,6 +102,15 @@ bad-input)
   set -e
   [ "$code" -eq 2 ] && grep -q "only \`glint render\` and \`glint tradeoff\` run across MPI ranks" err.txt ||
     fail "compare on ranks: exit $code: $(cat err.txt)"
+  # glint becomes glint-mpi under mpirun (app/distributed.h); copied alone, it refuses.
+  mkdir alone && cp "$glint" alone/glint
+  set +e
+  "$mpirun" -np 2 alone/glint render "$root/scenes/default.json" -o a.png >out.txt 2>err.txt
+  code=$?
+  set -e
+  [ "$code" -eq 2 ] && [ "$(grep -c 'glint: error' err.txt)" -eq 1 ] &&
+    grep -q "built without MPI: no .*/alone/glint-mpi beside it" err.txt && [ ! -e a.png ] ||
+    fail "glint without glint-mpi under mpirun: exit $code: $(cat err.txt)"
   echo "bad input on ranks: exit 2, one message, nothing written"
   ;;
 tradeoff)
