@@ -1,11 +1,6 @@
 #include "io/exr.h"
 
-#include <ImfChannelList.h>
-#include <ImfCompressionAttribute.h>
-#include <ImfFrameBuffer.h>
-#include <ImfHeader.h>
-#include <ImfOutputFile.h>
-#include <ImfStdIO.h>
+#include <dlfcn.h>
 
 #include <stdexcept>
 
@@ -13,73 +8,38 @@ namespace glint {
 
 namespace {
 
-// A FLOAT channel read from `base` with `stride` floats between pixels.
-void add_float(Imf::Header& header, Imf::FrameBuffer& buffer, const char* name, const float* base,
-               std::size_t stride, int width) {
-    header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-    const std::size_t x_stride = stride * sizeof(float);
-    buffer.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(base)),
-                                   x_stride, x_stride * static_cast<std::size_t>(width)));
-}
+// glint_encode_exr in the EXR plug-in (io/exr_plugin.cpp), opened on first use; null where it
+// cannot be, with dlopen's reason in `problem`.
+using Encoder = bool (*)(const ExrLayers*, std::string*, std::string*) noexcept;
+struct Plugin {
+    Encoder encode = nullptr;
+    std::string problem;
+};
 
-void check_size(std::size_t size, std::size_t expected, const char* layer) {
-    if (size != expected)
-        throw std::runtime_error(std::string("EXR: the ") + layer + " layer has " +
-                                 std::to_string(size) + " values, not " + std::to_string(expected));
+const Plugin& plugin() {
+    static const Plugin opened = [] {
+        Plugin p;
+        if (void* handle = ::dlopen(GLINT_EXR_PLUGIN, RTLD_NOW | RTLD_LOCAL))
+            p.encode = reinterpret_cast<Encoder>(::dlsym(handle, "glint_encode_exr"));
+        if (!p.encode) {
+            const char* reason = ::dlerror();
+            p.problem = reason ? reason : "no glint_encode_exr in it";
+        }
+        return p;
+    }();
+    return opened;
 }
 
 } // namespace
 
 std::string encode_exr(const ExrLayers& layers) {
-    if (!layers.colour || layers.colour->empty())
-        throw std::runtime_error("EXR: no colour to write");
-    const FloatImage& colour = *layers.colour;
-    const int width = colour.width, height = colour.height;
-    const std::size_t pixels = static_cast<std::size_t>(width) * height;
-    Imf::Header header(width, height);
-    // ZIP: lossless, and the compression OpenEXR's own tools write by default for renders.
-    header.compression() = Imf::ZIP_COMPRESSION;
-    Imf::FrameBuffer buffer;
-    const float* rgb = colour.rgb.data();
-    add_float(header, buffer, "R", rgb, 3, width);
-    add_float(header, buffer, "G", rgb + 1, 3, width);
-    add_float(header, buffer, "B", rgb + 2, 3, width);
-    if (layers.depth) {
-        check_size(layers.depth->size(), pixels, "depth");
-        add_float(header, buffer, "Z", layers.depth->data(), 1, width);
-    }
-    if (layers.normal) {
-        check_size(layers.normal->size(), 3 * pixels, "normal");
-        const float* n = layers.normal->data();
-        add_float(header, buffer, "N.X", n, 3, width);
-        add_float(header, buffer, "N.Y", n + 1, 3, width);
-        add_float(header, buffer, "N.Z", n + 2, 3, width);
-    }
-    if (layers.id) {
-        check_size(layers.id->size(), pixels, "id");
-        header.channels().insert("id", Imf::Channel(Imf::UINT));
-        const std::size_t x_stride = sizeof(std::uint32_t);
-        buffer.insert("id", Imf::Slice(Imf::UINT,
-                                       reinterpret_cast<char*>(
-                                           const_cast<std::uint32_t*>(layers.id->data())),
-                                       x_stride, x_stride * static_cast<std::size_t>(width)));
-    }
-    if (layers.cutoff) {
-        check_size(layers.cutoff->size(), pixels, "cutoff");
-        add_float(header, buffer, "cutoff", layers.cutoff->data(), 1, width);
-    }
-    try {
-        Imf::StdOSStream stream;
-        {
-            // The file's offset table is written when it closes: read the stream after.
-            Imf::OutputFile file(stream, header);
-            file.setFrameBuffer(buffer);
-            file.writePixels(height);
-        }
-        return stream.str();
-    } catch (const std::exception& e) {
-        throw std::runtime_error(std::string("OpenEXR: ") + e.what());
-    }
+    const Plugin& exr = plugin();
+    if (!exr.encode)
+        throw std::runtime_error("EXR: cannot open the OpenEXR plug-in built with glint: " +
+                                 exr.problem);
+    std::string bytes, error;
+    if (!exr.encode(&layers, &bytes, &error)) throw std::runtime_error(error);
+    return bytes;
 }
 
 void write_exr(const std::filesystem::path& path, const ExrLayers& layers) {
