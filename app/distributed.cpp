@@ -326,10 +326,9 @@ class MpiExchange final : public TileExchange {
 
     // Calls visit(i) for the pixels of `tile` the open loop writes.
     template <class Visit> void for_each_pixel(int tile, const Visit& visit) const {
-        for_each_pixel_of_tile(result_->radiance.width, result_->radiance.height, tile,
-                               [&](std::size_t i) {
-                                   if (!only_ || (*only_)[i]) visit(i);
-                               });
+        for_each_pixel_of_tile(result_->width(), result_->height(), tile, [&](std::size_t i) {
+            if (!only_ || (*only_)[i]) visit(i);
+        });
     }
 
     // A buffer of a tile already sent, for the next one (fresh pages cost more than the copy).

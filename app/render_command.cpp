@@ -218,6 +218,8 @@ bool wants(const std::vector<Aov>& aovs, Aov aov) {
 // or the EXR's float image with its AOVs (linear either way).
 void write_image(const RenderJob& job, const RenderResult& result) {
     if (extension_of(job.output) == ".png") {
+        // A frame made as the PNG's bytes (linear colour) is written as it is.
+        if (!result.floats()) return write_png(job.output, result.display_bytes);
         // Rows quantised as they are deflated: no 8-bit copy of the frame.
         const FloatImage& display = result.display();
         return write_png(job.output, display.width, display.height,
@@ -363,6 +365,9 @@ int run_render(const RenderArgs& args) {
     settings.aovs = wants(job.aovs, Aov::depth) || wants(job.aovs, Aov::normal) ||
                     wants(job.aovs, Aov::id);
     settings.ids = false; // nothing here reads them (ranks keep them for the exchange)
+    // A linear PNG is the display bytes, which its report reads too: a frame of them alone
+    // (RenderResult::display_bytes) first touches 6 MB at 1920×1080 where its floats are 25.
+    settings.radiance = extension_of(job.output) != ".png" || job.srgb;
     std::atomic<int> tiles_done{0};
     Frame frame;
     {

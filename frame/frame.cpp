@@ -33,8 +33,10 @@ Frame render_frame(const World& world, const FrameSettings& settings, std::atomi
         draw_item_buffers(world, settings, frame);
     }
     FrameRequest request;
-    // The ranks' tiles carry their ids to rank 0 (the exchange's pixel records), whoever asked.
+    // The ranks' tiles carry their ids and floats to rank 0 (the exchange's pixel records),
+    // whoever asked.
     request.aovs = settings.aovs, request.ids = settings.ids || settings.exchange;
+    request.radiance = settings.radiance || settings.exchange;
     frame.result = trace_frame(world, primary_source(frame, settings.resolve), frame.primary_stats,
                                settings.progress(tiles_done), frame.times, request);
     return frame;

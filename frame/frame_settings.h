@@ -39,6 +39,10 @@ struct FrameSettings {
     // command line or Python) read; `glint render` does without. A frame on MPI ranks keeps
     // them whatever this says: its exchange sends them.
     bool ids = true;
+    // Keep the float images (RenderResult::radiance, clamped), which an EXR, compare, tradeoff,
+    // the preview and the Python module read; `glint render` to a linear PNG does without (the
+    // display bytes are all it writes). A frame on MPI ranks keeps them whatever this says.
+    bool radiance = true;
     // Set from another thread to stop the frame between tiles (the Python module's Ctrl-C): the
     // frame returned is then incomplete, and its caller says so (frame_cancelled). Null: never.
     const std::atomic<bool>* cancel = nullptr;

@@ -6,6 +6,7 @@
 // its bins and a hybrid frame's passes to ASan and UBSan (the GL tests run in Release only).
 #include "test_scenes.h"
 
+#include "trace/cutoff.h"
 #include "trace/primary_hits.h"
 #include "trace/render.h"
 
@@ -147,6 +148,45 @@ TEST_P(ResolveTest, AFrameFromSpoiledIdsIsRayModesFrame) {
         EXPECT_EQ(hybrid.ids, ray.ids) << what;
         EXPECT_EQ(hybrid.aovs.depth, ray.aovs.depth) << what;
         EXPECT_EQ(hybrid.aovs.normal, ray.aovs.normal) << what;
+    }
+}
+
+// A frame that keeps no float image (FrameRequest::radiance false, `glint render` to a PNG) makes
+// its display bytes as it stores each pixel: they are the float frame's bytes, and so is every
+// figure its report reads (the cut-off bound's, from those bytes and the weights), in ray mode
+// and from spoiled ids, with one sample, a uniform grid and adaptive antialiasing (whose rule
+// reads the first pass's bytes).
+TEST_P(ResolveTest, AFrameOfBytesAloneHasTheFloatFramesBytes) {
+    for (const auto& [samples, antialias] :
+         {std::pair{1, Antialias::uniform}, {2, Antialias::uniform}, {3, Antialias::adaptive}}) {
+        Scene s = scene();
+        s.render.samples = samples;
+        s.render.antialias = antialias;
+        s.render.max_depth = 2; // omits rays where a material reflects: the bound is not 0
+        const World world(s);
+        const IdImage centres = synthetic_ids(world, 1, Spoil::mixed);
+        FrameRequest bytes_alone;
+        bytes_alone.radiance = false;
+        for (const PrimarySource& source : {PrimarySource{}, PrimarySource{&centres}}) {
+            PrimaryStats stats;
+            PhaseTimes times;
+            const RenderResult floats = trace_frame(world, source, stats, {}, times);
+            const RenderResult bytes = trace_frame(world, source, stats, {}, times, bytes_alone);
+            const std::string what = std::to_string(samples) + "x" + std::to_string(samples) + " " +
+                                     std::string(name_of(antialias)) +
+                                     (source.ids ? ", hybrid" : ", ray");
+            EXPECT_TRUE(floats.floats() && !bytes.floats()) << what;
+            EXPECT_TRUE(bytes.radiance.empty() && bytes.clamped.empty()) << what;
+            EXPECT_EQ(bytes.width(), floats.width()) << what;
+            EXPECT_EQ(bytes.pixels(), floats.pixels()) << what;
+            EXPECT_EQ(bytes.bytes().rgb, floats.bytes().rgb) << what;
+            EXPECT_EQ(bytes.refined, floats.refined) << what;
+            EXPECT_EQ(bytes.omitted_weight, floats.omitted_weight) << what;
+            const CutoffBound a = cutoff_summary(s, floats), b = cutoff_summary(s, bytes);
+            EXPECT_EQ(b.max, a.max) << what;
+            EXPECT_EQ(b.pixels_over_one, a.pixels_over_one) << what;
+            EXPECT_EQ(b.largest_omitted_weight, a.largest_omitted_weight) << what;
+        }
     }
 }
 

@@ -38,7 +38,6 @@ CutoffBound bound_of(const Scene& scene, const RenderResult& render, bool per_pi
     // No layer: no material reflects or transmits, so no ray was omitted and the bound is 0.
     if (render.omitted_weight.empty()) return bound;
     const glm::dvec3 radiance = ray_radiance_bound(scene);
-    const FloatImage& display = render.display();
     if (per_pixel) bound.per_pixel.assign(render.omitted_weight.size(), 0);
     // In parallel bands of pixels (it runs after the frame's write, outside every timed phase:
     // docs/PERFORMANCE.md, "Start-up and the write"), each band's extremes joined after.
@@ -54,7 +53,7 @@ CutoffBound bound_of(const Scene& scene, const RenderResult& render, bool per_pi
             if (weight == 0) continue;
             int pixel = 0;
             for (int c = 0; c < 3; ++c) {
-                const int headroom = 255 - to_byte(display.rgb[3 * i + c]);
+                const int headroom = 255 - render.byte_at(i, c);
                 // (1 + 1e-6) absorbs the rounding of the weight and of the sums it is compared
                 // with.
                 const double steps = std::ceil(255 * weight * radiance[c] * (1 + 1e-6));

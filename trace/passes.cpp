@@ -12,8 +12,9 @@ bool ThreadSchedule::run(FramePass pass, const RenderResult& result, const TileW
     TileProgress progress = progress_;
     // Spreading's rounds are not counted: how far it spreads is not known beforehand.
     if (pass == FramePass::spread) progress.tiles_done = nullptr;
-    for_each_tile(result.radiance.width, result.radiance.height, progress,
-                  [&](int x0, int y0, int x1, int y1) { work({x0, y0, x1, y1}); });
+    for_each_tile(result.width(), result.height(), progress, [&](int x0, int y0, int x1, int y1) {
+        work({x0, y0, x1, y1});
+    });
     return !progress.cancelled();
 }
 
@@ -138,11 +139,11 @@ bool run_pass(TileSchedule& schedule, FramePass pass, RenderResult& result, Prim
     return complete;
 }
 
-// The bytes of the pixels marked in `which`, from `colour` into `bytes`.
-void copy_bytes(const FloatImage& colour, const std::vector<std::uint8_t>& which, Image& bytes) {
+// The bytes of the pixels marked in `which`, from `result` into `bytes`.
+void copy_bytes(const RenderResult& result, const std::vector<std::uint8_t>& which, Image& bytes) {
     for (std::size_t i = 0; i < which.size(); ++i)
         if (which[i])
-            for (int c = 0; c < 3; ++c) bytes.rgb[3 * i + c] = to_byte(colour.rgb[3 * i + c]);
+            for (int c = 0; c < 3; ++c) bytes.rgb[3 * i + c] = result.byte_at(i, c);
 }
 
 } // namespace
@@ -189,13 +190,13 @@ RenderResult run_frame(const World& world, const PrimarySource& source, PrimaryS
             const double timed_before = times.primary + times.shading;
             const Stopwatch rounds;
             Image current = first;
-            if (decides) copy_bytes(result.display(), result.refined, current);
+            if (decides) copy_bytes(result, result.refined, current);
             spread_refinement(
                 first, current, result.refined, settings.aa_threshold, decides,
                 [&](std::vector<std::uint8_t>& next) { schedule.agree(FramePass::spread, next); },
                 [&](const std::vector<std::uint8_t>& next) {
                     if (!grids(FramePass::spread, &next)) return false;
-                    if (decides) copy_bytes(result.display(), next, current);
+                    if (decides) copy_bytes(result, next, current);
                     return true;
                 });
             times.shading += rounds.seconds() - (times.primary + times.shading - timed_before);

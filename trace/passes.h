@@ -70,6 +70,10 @@ struct FrameRequest {
     // Keep each pixel's object id (RenderResult::ids): what compare, tradeoff and the MPI
     // exchange read. A plain render reads none, and leaves the layer out.
     bool ids = true;
+    // Keep the float images (RenderResult::radiance, clamped): what an EXR, compare, tradeoff,
+    // the preview, the Python module and the MPI exchange read. false: the display bytes alone
+    // (RenderResult::display_bytes), all a PNG and its report read.
+    bool radiance = true;
     bool centres_first = false; // uniform grids too start with a centres pass (a first look)
     CentreObserver* observer = nullptr;
 };

@@ -14,9 +14,9 @@ RenderResult shade_image(const World& world, const std::vector<Hit>& primary,
     RenderResult result = blank_result(world, 1, {});
     if (path_keys) path_keys->assign(primary.size(), 0);
     std::mutex counts_mutex;
-    for_each_tile(result.radiance.width, result.radiance.height, progress,
+    for_each_tile(result.width(), result.height(), progress,
                   [&](int x0, int y0, int x1, int y1) {
-                      const std::size_t width = static_cast<std::size_t>(result.radiance.width);
+                      const std::size_t width = static_cast<std::size_t>(result.width());
                       const RayCounts counts =
                           shade_tile(world, &primary[static_cast<std::size_t>(y0) * width + x0],
                                      width, {x0, y0, x1, y1}, result, path_keys);

@@ -56,6 +56,11 @@ struct RenderResult {
     // (DESIGN §11), what the PNG shows. Empty with one sample a pixel, where it is the radiance
     // clamped.
     FloatImage clamped;
+    // Where the frame keeps no float image (FrameRequest::radiance false: a PNG render in one
+    // process, which reads nothing else of it), each pixel's display bytes, to_byte of the value
+    // display() would hold, made as the pixel is stored: 6 MB at 1920×1080 instead of 25 MB of
+    // floats first touched. Then radiance and clamped are empty. Read it through bytes_at.
+    Image display_bytes;
     RayCounts rays;
     // The summed path weights of the reflected and transmitted rays that max_depth or
     // min_reflectivity kept from being cast, 0 where none was (trace/cutoff.h). Empty where no
@@ -82,12 +87,20 @@ struct RenderResult {
     void set_omitted(std::size_t i, float weight) {
         if (!omitted_weight.empty()) omitted_weight[i] = weight;
     }
-    std::size_t pixels() const { return radiance.rgb.size() / 3; }
+    bool floats() const { return display_bytes.rgb.empty(); }
+    int width() const { return floats() ? radiance.width : display_bytes.width; }
+    int height() const { return floats() ? radiance.height : display_bytes.height; }
+    std::size_t pixels() const { return static_cast<std::size_t>(width()) * height(); }
 
-    // The colour a display shows, each channel clamped to [0, 1].
+    // The colour a display shows, each channel clamped to [0, 1]; only where floats() (a frame
+    // without them has its bytes alone).
     const FloatImage& display() const { return clamped.empty() ? radiance : clamped; }
     // The PNG's bytes: round(255·c) of the display colour (DESIGN §11).
-    Image bytes() const { return to_bytes(display()); }
+    Image bytes() const { return floats() ? to_bytes(display()) : display_bytes; }
+    // Channel c of pixel i's PNG byte.
+    std::uint8_t byte_at(std::size_t i, int c) const {
+        return floats() ? to_byte(display().rgb[3 * i + c]) : display_bytes.rgb[3 * i + c];
+    }
 };
 
 // `test` against `reference`: their PNG bytes (PSNR, largest error, pixels off by more than

@@ -10,8 +10,12 @@ RenderResult blank_result(const World& world, int samples, const FrameRequest& r
     const std::size_t pixels = static_cast<std::size_t>(width) * height;
     RenderResult result;
     // Every pixel is written by the frame's passes (or, on MPI ranks, by the exchange).
-    result.radiance = FloatImage::uninitialised(width, height);
-    if (samples > 1) result.clamped = FloatImage::uninitialised(width, height);
+    if (!request.radiance) {
+        result.display_bytes = Image::uninitialised(width, height);
+    } else {
+        result.radiance = FloatImage::uninitialised(width, height);
+        if (samples > 1) result.clamped = FloatImage::uninitialised(width, height);
+    }
     if (world.geometry()->secondary) result.omitted_weight.resize(pixels);
     if (request.ids) result.ids.resize(pixels);
     if (request.aovs) result.aovs = PrimaryAovs(pixels);

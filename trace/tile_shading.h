@@ -26,8 +26,15 @@ inline void store_colour(Vec3 c, std::uint8_t* pixel) {
 }
 
 // Stores pixel i's colour, the mean of its samples: unclamped, and with each sample clamped
-// where the result keeps that apart (N > 1).
+// (with one sample, the colour clamped), the latter kept apart where N > 1; or, where the
+// result keeps no floats, the bytes of the clamped one, which are display()'s (to_byte clamps
+// what it is given: the two agree on every float, NaN included).
 inline void store_pixel(RenderResult& result, std::size_t i, Vec3 radiance, Vec3 clamped) {
+    if (!result.floats()) {
+        for (int k = 0; k < 3; ++k)
+            result.display_bytes.rgb[3 * i + k] = to_byte(static_cast<float>(clamped[k]));
+        return;
+    }
     result.radiance.set(i, radiance);
     if (!result.clamped.empty()) result.clamped.set(i, clamped);
 }
@@ -42,9 +49,10 @@ inline void store_aovs(RenderResult& result, std::size_t i, const Hit& hit, Vec3
 
 struct FrameRequest; // trace/passes.h
 
-// An empty result for `world`'s image: the clamped image where a pixel's samples are N > 1,
-// the cut-off weights where a material reflects or transmits, the AOVs and the ids where
-// `request` asks for them.
+// An empty result for `world`'s image: the float images (the clamped one where a pixel's
+// samples are N > 1), or the display bytes alone where `request` asks for no radiance; the
+// cut-off weights where a material reflects or transmits; the AOVs and the ids where `request`
+// asks for them.
 RenderResult blank_result(const World& world, int samples, const FrameRequest& request);
 
 // A worker thread's buffers for the tile it works on, kept from tile to tile (tile_buffers()).
