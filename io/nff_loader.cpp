@@ -8,7 +8,6 @@
 #include "io/scene_check.h"
 #include "trace/shapes/table.h"
 
-#include <cctype>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -129,21 +128,25 @@ class NffReader {
         throw SceneError(name_ + ":" + std::to_string(line) + ": " + message);
     }
 
+    // White space within a line: C's isspace less the newline, spelt out (isspace is a call per
+    // byte, and follows the locale a host program such as Python may set).
+    static bool blank(char c) {
+        return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
+    }
+
     // The next token, skipping white space and # comments; nothing at the end of the file.
     std::optional<Token> next() {
         while (pos_ < text_.size()) {
             const char c = text_[pos_];
             if (c == '\n') {
                 ++line_, ++pos_;
-            } else if (c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v') {
+            } else if (blank(c)) {
                 ++pos_;
             } else if (c == '#') {
                 while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
             } else {
                 const std::size_t start = pos_;
-                while (pos_ < text_.size() &&
-                       !std::isspace(static_cast<unsigned char>(text_[pos_])))
-                    ++pos_;
+                while (pos_ < text_.size() && !blank(text_[pos_]) && text_[pos_] != '\n') ++pos_;
                 last_line_ = line_;
                 return Token{std::string_view(text_).substr(start, pos_ - start), line_};
             }
