@@ -214,6 +214,13 @@ bool wants(const std::vector<Aov>& aovs, Aov aov) {
     return std::find(aovs.begin(), aovs.end(), aov) != aovs.end();
 }
 
+// Whether writing `job`'s frames reads their float images: not for a linear PNG, which is the
+// display bytes, as is all its report reads. A frame of those alone
+// (RenderResult::display_bytes) first touches 6 MB at 1920×1080 where its floats are 25.
+bool reads_floats(const RenderJob& job) {
+    return extension_of(job.output) != ".png" || job.srgb;
+}
+
 // The frame as the output's format: the PNG's bytes (through the sRGB curve with --colour srgb),
 // or the EXR's float image with its AOVs (linear either way).
 void write_image(const RenderJob& job, const RenderResult& result) {
@@ -286,6 +293,7 @@ int run_sequence(const RenderArgs& args) {
     Scene& scene = job.scene;
     const Camera unorbited = scene.camera;
     FrameSettings settings = args.frame.settings();
+    settings.radiance = reads_floats(job);
     std::optional<GlPass> gl;
     if (needs_gl(settings, scene.objects.size())) gl.emplace(settings);
     const Stopwatch prepare_watch;
@@ -365,9 +373,7 @@ int run_render(const RenderArgs& args) {
     settings.aovs = wants(job.aovs, Aov::depth) || wants(job.aovs, Aov::normal) ||
                     wants(job.aovs, Aov::id);
     settings.ids = false; // nothing here reads them (ranks keep them for the exchange)
-    // A linear PNG is the display bytes, which its report reads too: a frame of them alone
-    // (RenderResult::display_bytes) first touches 6 MB at 1920×1080 where its floats are 25.
-    settings.radiance = extension_of(job.output) != ".png" || job.srgb;
+    settings.radiance = reads_floats(job);
     std::atomic<int> tiles_done{0};
     Frame frame;
     {
