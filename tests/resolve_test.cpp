@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace glint {
@@ -85,7 +86,19 @@ class ResolveTest : public ::testing::TestWithParam<const char*> {
         return testing::shipped(GetParam(), 96 / testing::kSanitizerShrink,
                                 72 / testing::kSanitizerShrink);
     }
+    // The scene with N×N samples a pixel and the antialiasing rule.
+    Scene sampled(int samples, Antialias antialias) const {
+        Scene s = scene();
+        s.render.samples = samples;
+        s.render.antialias = antialias;
+        return s;
+    }
 };
+
+// The frames' passes a whole-frame test goes through: pixel centres alone, a uniform grid, and
+// adaptive's centres then its refined samples.
+constexpr std::pair<int, Antialias> kSamplings[] = {
+    {1, Antialias::uniform}, {2, Antialias::uniform}, {3, Antialias::adaptive}};
 
 TEST_P(ResolveTest, ExactResolveOfASpoiledIdImageGivesEveryRayModeHit) {
     const Scene s = scene();
@@ -122,11 +135,8 @@ TEST_P(ResolveTest, TrustResolveOfATrueIdImageNamesRayModesObjects) {
 // a uniform grid's ids; adaptive's centres then its refined samples) equals ray mode's bit for
 // bit: colour, bytes, ids and AOVs.
 TEST_P(ResolveTest, AFrameFromSpoiledIdsIsRayModesFrame) {
-    for (const auto& [samples, antialias] :
-         {std::pair{1, Antialias::uniform}, {2, Antialias::uniform}, {3, Antialias::adaptive}}) {
-        Scene s = scene();
-        s.render.samples = samples;
-        s.render.antialias = antialias;
+    for (const auto& [samples, antialias] : kSamplings) {
+        const Scene s = sampled(samples, antialias);
         const World world(s);
         const IdImage centres = synthetic_ids(world, 1, Spoil::mixed);
         const IdImage grid = synthetic_ids(world, samples, Spoil::mixed);
@@ -157,11 +167,8 @@ TEST_P(ResolveTest, AFrameFromSpoiledIdsIsRayModesFrame) {
 // and from spoiled ids, with one sample, a uniform grid and adaptive antialiasing (whose rule
 // reads the first pass's bytes).
 TEST_P(ResolveTest, AFrameOfBytesAloneHasTheFloatFramesBytes) {
-    for (const auto& [samples, antialias] :
-         {std::pair{1, Antialias::uniform}, {2, Antialias::uniform}, {3, Antialias::adaptive}}) {
-        Scene s = scene();
-        s.render.samples = samples;
-        s.render.antialias = antialias;
+    for (const auto& [samples, antialias] : kSamplings) {
+        Scene s = sampled(samples, antialias);
         s.render.max_depth = 2; // omits rays where a material reflects: the bound is not 0
         const World world(s);
         const IdImage centres = synthetic_ids(world, 1, Spoil::mixed);
