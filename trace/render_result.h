@@ -59,7 +59,7 @@ struct RenderResult {
     // Where the frame keeps no float image (FrameRequest::radiance false: a PNG render in one
     // process, which reads nothing else of it), each pixel's display bytes, to_byte of the value
     // display() would hold, made as the pixel is stored: 6 MB at 1920×1080 instead of 25 MB of
-    // floats first touched. Then radiance and clamped are empty. Read it through bytes_at.
+    // floats first touched. Then radiance and clamped are empty. Read it through byte_at.
     Image display_bytes;
     RayCounts rays;
     // The summed path weights of the reflected and transmitted rays that max_depth or
