@@ -133,10 +133,10 @@ void World::order_leaves() {
     }
 }
 
-template <class Counters, class Visit>
+template <bool kNearestFirst, class Counters, class Visit>
 void World::traverse(const Ray& ray, Real& t_max, Counters& counters, Visit&& visit) const {
     if (const WideBvh* bvh = accel_.wide_bvh()) {
-        bvh->traverse_leaves(
+        bvh->traverse_leaves<kNearestFirst>(
             ray, t_max, counters,
             [&](std::uint32_t begin, std::uint32_t end, Real& limit) {
                 return visit_leaf(ray, begin, end, limit, counters, visit);
@@ -375,12 +375,14 @@ bool World::any(const Ray& ray, Real t_max, std::uint32_t skip, Counters& counte
     // Boxes loosely, as intersect_object checks them after a hit: the list, testing each box
     // first against t_max itself, missed an occluder whose box entry rounded just beyond the
     // end of a shadow ray 2e9 long, which the BVH counted (fuzz_nff).
+    // Any blocker will do: each node's children are taken unsorted.
     Real limit = loose(t_max);
-    traverse(ray, limit, counters,
-             [&](std::uint32_t index, const auto& object, Real&, const auto& shape) {
-                 found = blocks_ray(slab, t_max, skip, index, object, boxes_tested, shape, blocks);
-                 return found;
-             });
+    traverse<false>(ray, limit, counters,
+                    [&](std::uint32_t index, const auto& object, Real&, const auto& shape) {
+                        found = blocks_ray(slab, t_max, skip, index, object, boxes_tested, shape,
+                                           blocks);
+                        return found;
+                    });
     return found;
 }
 
@@ -418,7 +420,7 @@ void World::any_packet(std::span<const Ray> rays, Real t_max, const std::uint32_
     if (list)
         return any_list_packet(*list, rays, t_max, skips, slab, which, count, found, counters,
                                blocks);
-    bvh->traverse_packet(
+    bvh->traverse_packet<false>( // any blocker will do: each node's children unsorted
         pending, count, limit, counters,
         [&](int k, std::uint32_t begin, std::uint32_t end, Real& limit) {
             const int r = which[k];

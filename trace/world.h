@@ -232,8 +232,9 @@ class World {
     static void keep(Closest& query, std::uint32_t index, const ShapeHit& h);
     // The bounded objects the ray may meet, through the structure: visit(index, object, t_max,
     // shape_of) as the structure's visitor (accel.h) with the object's shape_of; with the
-    // eight-wide BVH, from leaf_objects_ (visit_leaf).
-    template <class Counters, class Visit>
+    // eight-wide BVH, from leaf_objects_ (visit_leaf), nearest box first unless kNearestFirst is
+    // false (WideBvh::traverse_leaves).
+    template <bool kNearestFirst = true, class Counters, class Visit>
     void traverse(const Ray& ray, Real& t_max, Counters& counters, Visit&& visit) const;
     template <class Counters>
     Hit closest(const Ray& ray, Real t_max, std::uint32_t skip, Counters& counters) const;

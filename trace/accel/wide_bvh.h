@@ -331,18 +331,21 @@ class WideBvh {
 
     // The leaves the ray may meet, nearest box first: visit(first_slot, end_slot, t_max) may
     // shorten t_max and returns true to stop. Counts one node per wide node whose boxes it tests.
+    // kNearestFirst false takes each node's children in their own order instead, unsorted: for
+    // an any-hit query, whose answer does not depend on the order, the sort is only cost.
     // prefetch(first_slot) is told of every leaf the ray meets as soon as its box is tested, so
     // that the user's data for it (a mesh's triangle block) is fetched while nearer ones are
     // visited: the loads of a node's leaves overlap instead of following one another.
-    template <class Counters, class VisitLeaf, class PrefetchLeaf = void (*)(std::uint32_t)>
+    template <bool kNearestFirst = true, class Counters, class VisitLeaf,
+              class PrefetchLeaf = void (*)(std::uint32_t)>
     void traverse_leaves(
         const Ray& ray, Real& t_max, Counters& counters, VisitLeaf&& visit,
         PrefetchLeaf&& prefetch_leaf = [](std::uint32_t) {}) const {
 #if GLINT_SIMD
         if (active_kernel() != Kernel::sse) // AVX-512's node test for one ray is AVX2's
-            return traverse_leaves_avx2(ray, t_max, counters, visit, prefetch_leaf);
+            return traverse_leaves_avx2<kNearestFirst>(ray, t_max, counters, visit, prefetch_leaf);
 #endif
-        traverse_leaves_with<false>(ray, t_max, counters, visit, prefetch_leaf);
+        traverse_leaves_with<false, kNearestFirst>(ray, t_max, counters, visit, prefetch_leaf);
     }
 
     // The acceleration-structure contract (accel.h): visit(item, t_max) for every item of the
@@ -368,50 +371,56 @@ class WideBvh {
     // visit(ray, first_slot, end_slot, t_max) may shorten that ray's limit and returns true when
     // the ray is done (any hit found). t_max[r] is each ray's limit, as in traverse.
     // prefetch_leaf(first_slot) is told of every leaf some ray meets, as traverse_leaves tells it,
-    // and the waiting inner children are fetched likewise.
-    template <class Counters, class VisitLeaf, class PrefetchLeaf = void (*)(std::uint32_t)>
+    // and the waiting inner children are fetched likewise. kNearestFirst as in traverse_leaves.
+    template <bool kNearestFirst = true, class Counters, class VisitLeaf,
+              class PrefetchLeaf = void (*)(std::uint32_t)>
     void traverse_packet(
         const Ray* rays, int count, const Real* t_max, Counters& counters, VisitLeaf&& visit,
         PrefetchLeaf&& prefetch_leaf = [](std::uint32_t) {}) const {
 #if GLINT_SIMD
         switch (active_kernel()) {
         case Kernel::avx512:
-            return traverse_packet_avx512(rays, count, t_max, counters, visit, prefetch_leaf);
+            return traverse_packet_avx512<kNearestFirst>(rays, count, t_max, counters, visit,
+                                                         prefetch_leaf);
         case Kernel::avx2:
-            return traverse_packet_avx2(rays, count, t_max, counters, visit, prefetch_leaf);
+            return traverse_packet_avx2<kNearestFirst>(rays, count, t_max, counters, visit,
+                                                       prefetch_leaf);
         case Kernel::sse:
             break;
         }
 #endif
-        traverse_packet_with<Kernel::sse>(rays, count, t_max, counters, visit, prefetch_leaf);
+        traverse_packet_with<Kernel::sse, kNearestFirst>(rays, count, t_max, counters, visit,
+                                                         prefetch_leaf);
     }
 
   private:
 #if GLINT_SIMD
     // The traversals compiled for AVX2 and AVX-512, their box tests inlined (enter_avx2,
     // enter_avx512).
-    template <class Counters, class VisitLeaf, class PrefetchLeaf>
+    template <bool kNearestFirst, class Counters, class VisitLeaf, class PrefetchLeaf>
     [[gnu::target("avx2")]] void traverse_leaves_avx2(const Ray& ray, Real& t_max,
                                                       Counters& counters, VisitLeaf& visit,
                                                       PrefetchLeaf& prefetch_leaf) const {
-        traverse_leaves_with<true>(ray, t_max, counters, visit, prefetch_leaf);
+        traverse_leaves_with<true, kNearestFirst>(ray, t_max, counters, visit, prefetch_leaf);
     }
-    template <class Counters, class VisitLeaf, class PrefetchLeaf>
+    template <bool kNearestFirst, class Counters, class VisitLeaf, class PrefetchLeaf>
     [[gnu::target("avx2")]] void traverse_packet_avx2(const Ray* rays, int count, const Real* t_max,
                                                       Counters& counters, VisitLeaf& visit,
                                                       PrefetchLeaf& prefetch_leaf) const {
-        traverse_packet_with<Kernel::avx2>(rays, count, t_max, counters, visit, prefetch_leaf);
+        traverse_packet_with<Kernel::avx2, kNearestFirst>(rays, count, t_max, counters, visit,
+                                                          prefetch_leaf);
     }
-    template <class Counters, class VisitLeaf, class PrefetchLeaf>
+    template <bool kNearestFirst, class Counters, class VisitLeaf, class PrefetchLeaf>
     [[gnu::target("avx512f")]] void
     traverse_packet_avx512(const Ray* rays, int count, const Real* t_max, Counters& counters,
                            VisitLeaf& visit, PrefetchLeaf& prefetch_leaf) const {
-        traverse_packet_with<Kernel::avx512>(rays, count, t_max, counters, visit, prefetch_leaf);
+        traverse_packet_with<Kernel::avx512, kNearestFirst>(rays, count, t_max, counters, visit,
+                                                            prefetch_leaf);
     }
 #endif
 
     // traverse_leaves with the AVX2 kernel's box test or the portable one's.
-    template <bool kAvx2, class Counters, class VisitLeaf, class PrefetchLeaf>
+    template <bool kAvx2, bool kNearestFirst, class Counters, class VisitLeaf, class PrefetchLeaf>
     [[gnu::always_inline]] void traverse_leaves_with(const Ray& ray, Real& t_max,
                                                      Counters& counters, VisitLeaf& visit,
                                                      PrefetchLeaf& prefetch_leaf) const {
@@ -443,7 +452,8 @@ class WideBvh {
                 const int k = __builtin_ctz(mask);
                 const Entry e{n.child[k], n.count[k], t_near[k]};
                 int at = hits++;
-                for (; at > 0 && hit[at - 1].t > e.t; --at) hit[at] = hit[at - 1];
+                if constexpr (kNearestFirst)
+                    for (; at > 0 && hit[at - 1].t > e.t; --at) hit[at] = hit[at - 1];
                 hit[at] = e;
             }
             for (int k = hits - 1; k > 0; --k) {
@@ -471,7 +481,7 @@ class WideBvh {
     }
 
     // traverse_packet with the box test of kernel K.
-    template <Kernel K, class Counters, class VisitLeaf, class PrefetchLeaf>
+    template <Kernel K, bool kNearestFirst, class Counters, class VisitLeaf, class PrefetchLeaf>
     [[gnu::always_inline]] void traverse_packet_with(const Ray* rays, int count, const Real* t_max,
                                                      Counters& counters, VisitLeaf& visit,
                                                      PrefetchLeaf& prefetch_leaf) const {
@@ -510,7 +520,8 @@ class WideBvh {
                     if (met == 0) continue;
                     const Entry e{n.child[k], n.count[k], met, t};
                     int at = hits++; // nearest first
-                    for (; at > 0 && hit[at - 1].t > e.t; --at) hit[at] = hit[at - 1];
+                    if constexpr (kNearestFirst)
+                        for (; at > 0 && hit[at - 1].t > e.t; --at) hit[at] = hit[at - 1];
                     hit[at] = e;
                 }
                 for (int k = hits - 1; k >= 0; --k) {

@@ -281,7 +281,8 @@ consider_triangles(const Mesh& mesh, std::uint32_t begin, std::uint32_t end,
 // wins, as it does when all are tested in order: the answer does not depend on the order a
 // tree visits its leaves in (tests/accel_test.cpp, MeshHitsAreTheSameWhateverTheVisitingOrder).
 // Wanted::any stops after the first leaf that holds a hit: a hit, not always the nearest, found
-// exactly when the nearest is (the traversal it stops is the same, its limit only shortened).
+// exactly when the nearest is (every leaf the nearest-first traversal could reach is reached,
+// unsorted: kNearestFirst false, its limit only shortened).
 // With `cut`, hits it cuts away are no hits (the traversal goes on past them).
 template <class Counters>
 ShapeHit intersect_mesh(const Mesh& mesh, const Ray& ray, Real t_max, Counters& counters,
@@ -290,14 +291,16 @@ ShapeHit intersect_mesh(const Mesh& mesh, const Ray& ray, Real t_max, Counters& 
     const WatertightRay prepared(ray); // once per ray, not per triangle
     Real box_limit = loose(t_max);
     if (!mesh.bvh.nodes().empty()) {
-        mesh.bvh.traverse_leaves(
-            ray, box_limit, counters,
-            [&](std::uint32_t begin, std::uint32_t end, Real& limit) {
-                consider_triangles(mesh, begin, end, prepared, t_max, best, counters, cut);
-                limit = loose(std::min(best.t, t_max));
-                return wanted == Wanted::any && best.found();
-            },
-            [&](std::uint32_t first) { prefetch_block(mesh, first); });
+        const auto visit = [&](std::uint32_t begin, std::uint32_t end, Real& limit) {
+            consider_triangles(mesh, begin, end, prepared, t_max, best, counters, cut);
+            limit = loose(std::min(best.t, t_max));
+            return wanted == Wanted::any && best.found();
+        };
+        const auto prefetch = [&](std::uint32_t first) { prefetch_block(mesh, first); };
+        if (wanted == Wanted::any) // any leaf with a hit will do: no order to keep
+            mesh.bvh.traverse_leaves<false>(ray, box_limit, counters, visit, prefetch);
+        else
+            mesh.bvh.traverse_leaves(ray, box_limit, counters, visit, prefetch);
     } else {
         if (!SlabRay(ray).hits(mesh.bounds, box_limit)) return {};
         consider_triangles(mesh, 0, static_cast<std::uint32_t>(mesh.triangles.size()), prepared,
@@ -325,15 +328,17 @@ void intersect_mesh_packet(const Mesh& mesh, const Ray* rays, int count, const R
     std::optional<WatertightRay> prepared[kMaxPacket]; // made on a ray's first leaf
     Real box_limit[kMaxPacket];
     for (int r = 0; r < count; ++r) best[r] = {}, box_limit[r] = loose(t_max[r]);
-    mesh.bvh.traverse_packet(
-        rays, count, box_limit, counters,
-        [&](int r, std::uint32_t begin, std::uint32_t end, Real& limit) {
-            if (!prepared[r]) prepared[r].emplace(rays[r]);
-            consider_triangles(mesh, begin, end, *prepared[r], t_max[r], best[r], counters, cut);
-            limit = loose(std::min(best[r].t, t_max[r]));
-            return wanted == Wanted::any && best[r].found();
-        },
-        [&](std::uint32_t first) { prefetch_block(mesh, first); });
+    const auto visit = [&](int r, std::uint32_t begin, std::uint32_t end, Real& limit) {
+        if (!prepared[r]) prepared[r].emplace(rays[r]);
+        consider_triangles(mesh, begin, end, *prepared[r], t_max[r], best[r], counters, cut);
+        limit = loose(std::min(best[r].t, t_max[r]));
+        return wanted == Wanted::any && best[r].found();
+    };
+    const auto prefetch = [&](std::uint32_t first) { prefetch_block(mesh, first); };
+    if (wanted == Wanted::any)
+        mesh.bvh.traverse_packet<false>(rays, count, box_limit, counters, visit, prefetch);
+    else
+        mesh.bvh.traverse_packet(rays, count, box_limit, counters, visit, prefetch);
 }
 
 // The surface at barycentric weights (u, v) of triangle `triangle`'s vertices 1 and 2, as its
