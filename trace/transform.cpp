@@ -84,20 +84,25 @@ Vec3 Transform::roundtrip_error(Vec3 p, Vec3 p_error) const {
     // stored float matrices' own inconsistency. Identity maps round only in that final addition.
     const Vec3 abs_p = glm::abs(p);
     if (kind == TransformClass::identity) return p_error + gamma(2) * abs_p;
-    const bool general = kind == TransformClass::general;
-    const Mat3 abs_linear =
-        general ? Mat3(glm::abs(linear[0]), glm::abs(linear[1]), glm::abs(linear[2])) : Mat3(scale);
-    const Mat3 abs_inverse = general
-                                 ? Mat3(glm::abs(inverse_linear[0]), glm::abs(inverse_linear[1]),
-                                        glm::abs(inverse_linear[2]))
-                                 : Mat3(inverse_scale);
-    const Vec3 world = abs_linear * abs_p + glm::abs(offset);
-    const Vec3 world_error = gamma(4) * world;
-    const Vec3 back_error =
-        abs_inverse * world_error +
-        gamma(3) * (abs_inverse * (world + world_error) + glm::abs(inverse_offset));
+    // |L| and |L⁻¹| as matrices, or, without rotation or shear, as the scales s and 1/s (s > 0;
+    // 1 for a translation): s·I times a finite vector adds only exact zeros to s times it, so the
+    // scalar product is the same bound without a matrix's nine products. In camera-relative
+    // coordinates most objects are translations: on sombrero-2's mesh this function fell from
+    // 2.2% of a frame's samples to 0.3%.
+    const auto back_error = [&](const auto& abs_linear, const auto& abs_inverse) {
+        const Vec3 world = abs_linear * abs_p + glm::abs(offset);
+        const Vec3 world_error = gamma(4) * world;
+        return abs_inverse * world_error +
+               gamma(3) * (abs_inverse * (world + world_error) + glm::abs(inverse_offset));
+    };
+    const Vec3 back =
+        kind == TransformClass::general
+            ? back_error(Mat3(glm::abs(linear[0]), glm::abs(linear[1]), glm::abs(linear[2])),
+                         Mat3(glm::abs(inverse_linear[0]), glm::abs(inverse_linear[1]),
+                              glm::abs(inverse_linear[2])))
+            : back_error(scale, inverse_scale);
     const Real p_sum = abs_p.x + abs_p.y + abs_p.z;
-    return p_error + back_error + Vec3(roundtrip_linear_error * p_sum + roundtrip_offset_error);
+    return p_error + back + Vec3(roundtrip_linear_error * p_sum + roundtrip_offset_error);
 }
 
 void ToObjectColumns::assign(std::size_t n) {
