@@ -445,7 +445,7 @@ class WideBvh {
             else
 #endif
                 mask = wide.enter_sse(n, t_max, t_near);
-            // The children the ray meets, nearest first (insertion into at most eight).
+            // The children the ray meets, nearest first (insertion into at most eight) where asked.
             Entry hit[kBvhWidth];
             int hits = 0;
             for (; mask != 0; mask &= mask - 1) {
@@ -519,7 +519,7 @@ class WideBvh {
                         met = packet.enter_sse(n, k, active, t);
                     if (met == 0) continue;
                     const Entry e{n.child[k], n.count[k], met, t};
-                    int at = hits++; // nearest first
+                    int at = hits++; // nearest first where asked
                     if constexpr (kNearestFirst)
                         for (; at > 0 && hit[at - 1].t > e.t; --at) hit[at] = hit[at - 1];
                     hit[at] = e;
