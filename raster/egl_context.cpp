@@ -3,13 +3,14 @@
 // as here), and the way glint keeps working once OSMesa is gone (Mesa 25.1+).
 #include "raster/gl_context.h"
 
+#include "raster/gl_library.h"
+
 #include <glad/gl.h>
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
 #ifdef GLINT_SANITIZE
-#include <dlfcn.h>
 #include <link.h>
 
 #include <string_view>
@@ -36,8 +37,38 @@ void keep_dri_drivers_loaded() {
 }
 #endif
 
+// libEGL (glvnd's dispatcher, with libGLdispatch) is opened when EGL is first asked for, not
+// linked, as OSMesa is: only the hybrid pass with --gl egl and `glint info` use it, and loading
+// it cost every process about 2 ms (`glint --version` 13.9 → 12.0 ms: docs/PERFORMANCE.md,
+// "EGL opened only to draw").
+struct EglLibrary {
+    decltype(&eglGetProcAddress) get_proc_address;
+    decltype(&eglInitialize) initialize;
+    decltype(&eglTerminate) terminate;
+    decltype(&eglBindAPI) bind_api;
+    decltype(&eglCreateContext) create_context;
+    decltype(&eglMakeCurrent) make_current;
+    decltype(&eglDestroyContext) destroy_context;
+};
+
+const EglLibrary& egl() {
+    static const EglLibrary functions = [] {
+        void* library = open_gl_library({"libEGL.so.1", "libEGL.so"}, "EGL (libegl1)");
+        EglLibrary f{};
+        find_function(library, f.get_proc_address, "eglGetProcAddress", "libEGL");
+        find_function(library, f.initialize, "eglInitialize", "libEGL");
+        find_function(library, f.terminate, "eglTerminate", "libEGL");
+        find_function(library, f.bind_api, "eglBindAPI", "libEGL");
+        find_function(library, f.create_context, "eglCreateContext", "libEGL");
+        find_function(library, f.make_current, "eglMakeCurrent", "libEGL");
+        find_function(library, f.destroy_context, "eglDestroyContext", "libEGL");
+        return f;
+    }();
+    return functions;
+}
+
 template <class Function> Function egl_function(const char* name) {
-    return reinterpret_cast<Function>(eglGetProcAddress(name));
+    return reinterpret_cast<Function>(egl().get_proc_address(name));
 }
 
 struct Device {
@@ -81,7 +112,7 @@ class EglContext final : public GlContext {
                           : get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY,
                                                  nullptr);
         EGLint major = 0, minor = 0;
-        if (display_ == EGL_NO_DISPLAY || !eglInitialize(display_, &major, &minor))
+        if (display_ == EGL_NO_DISPLAY || !egl().initialize(display_, &major, &minor))
             throw GlError(device ? "EGL could not open a display on the device"
                                  : "EGL could not open a surfaceless display (Mesa's "
                                    "EGL_MESA_platform_surfaceless)");
@@ -97,15 +128,15 @@ class EglContext final : public GlContext {
                                      EGL_CONTEXT_OPENGL_PROFILE_MASK,
                                      EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                                      EGL_NONE};
-        if (!eglBindAPI(EGL_OPENGL_API) ||
-            (context_ = eglCreateContext(display_, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT,
-                                         attributes)) == EGL_NO_CONTEXT ||
-            !eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) {
+        if (!egl().bind_api(EGL_OPENGL_API) ||
+            (context_ = egl().create_context(display_, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT,
+                                             attributes)) == EGL_NO_CONTEXT ||
+            !egl().make_current(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) {
             release();
             throw GlError("EGL could not create an OpenGL 3.3 core context");
         }
         try {
-            load_functions(reinterpret_cast<void* (*)(const char*)>(eglGetProcAddress));
+            load_functions(reinterpret_cast<void* (*)(const char*)>(egl().get_proc_address));
         } catch (...) {
             release();
             throw;
@@ -118,10 +149,10 @@ class EglContext final : public GlContext {
   private:
     void release() {
         if (context_ != EGL_NO_CONTEXT) {
-            eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-            eglDestroyContext(display_, context_);
+            egl().make_current(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+            egl().destroy_context(display_, context_);
         }
-        eglTerminate(display_);
+        egl().terminate(display_);
     }
 
     EGLDisplay display_ = EGL_NO_DISPLAY;
@@ -144,7 +175,11 @@ std::unique_ptr<GlContext> make_egl_context() {
 
 std::vector<EglDevice> egl_devices() {
     std::vector<EglDevice> facts;
-    for (Device& device : enumerate_devices()) facts.push_back(std::move(device.facts));
+    try {
+        for (Device& device : enumerate_devices()) facts.push_back(std::move(device.facts));
+    } catch (const GlError&) {
+        // No libEGL to ask: no device it can enumerate.
+    }
     return facts;
 }
 

@@ -1,5 +1,7 @@
 #include "raster/gl_context.h"
 
+#include "raster/gl_library.h"
+
 #include <glad/gl.h>
 
 namespace glint {
@@ -19,6 +21,15 @@ void GlContext::load_functions(void* (*get_proc)(const char*)) {
         throw GlError("the GL context lacks ARB_clip_control (needed for reverse-Z depth)");
     renderer_ = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     version_ = reinterpret_cast<const char*>(glGetString(GL_VERSION));
+}
+
+void* open_gl_library(std::initializer_list<const char*> names, const std::string& what) {
+    std::string why;
+    for (const char* name : names) {
+        if (void* library = dlopen(name, RTLD_NOW | RTLD_LOCAL)) return library;
+        if (why.empty()) why = dlerror();
+    }
+    throw GlError("could not load " + what + ": " + why);
 }
 
 std::unique_ptr<GlContext> make_context(GlBackend backend) {

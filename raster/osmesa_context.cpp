@@ -1,10 +1,11 @@
 // OSMesa: Mesa's off-screen GL (llvmpipe), in Debian 12; Mesa removed it in 25.1 (see EGL).
 #include "raster/gl_context.h"
 
+#include "raster/gl_library.h"
+
 #include <glad/gl.h> // before GL/osmesa.h, which would otherwise pull in GL/gl.h
 
 #include <GL/osmesa.h>
-#include <dlfcn.h>
 
 #include <array>
 #include <string>
@@ -16,7 +17,7 @@ namespace {
 // with it, whose loading and relocation cost every glint process about 65 ms before main()
 // (`glint --version` took 78 ms, 13 without it: docs/PERFORMANCE.md, "Start-up and the
 // write"), though only the item buffer uses it. Once opened it stays open, so that the leak
-// checker still sees its allocations' module (tools/lsan.supp).
+// checker still sees its allocations' module (tools/lsan.supp; raster/gl_library.h).
 struct OsmesaLibrary {
     decltype(&OSMesaCreateContextAttribs) create_context_attribs;
     decltype(&OSMesaMakeCurrent) make_current;
@@ -24,25 +25,15 @@ struct OsmesaLibrary {
     decltype(&OSMesaGetProcAddress) get_proc_address;
 };
 
-// Sets `function` to the library's `name`.
-template <class Function> void find(void* library, Function& function, const char* name) {
-    function = reinterpret_cast<Function>(dlsym(library, name));
-    if (!function) throw GlError(std::string("libOSMesa lacks ") + name);
-}
-
 const OsmesaLibrary& osmesa() {
     static const OsmesaLibrary functions = [] {
-        void* library = dlopen("libOSMesa.so.8", RTLD_NOW | RTLD_LOCAL);
-        if (!library) { // the package libosmesa6, which ./glint installs
-            const std::string why = dlerror();
-            library = dlopen("libOSMesa.so", RTLD_NOW | RTLD_LOCAL);
-            if (!library) throw GlError("could not load OSMesa (libosmesa6): " + why);
-        }
+        // The package libosmesa6, which ./glint installs.
+        void* library = open_gl_library({"libOSMesa.so.8", "libOSMesa.so"}, "OSMesa (libosmesa6)");
         OsmesaLibrary f{};
-        find(library, f.create_context_attribs, "OSMesaCreateContextAttribs");
-        find(library, f.make_current, "OSMesaMakeCurrent");
-        find(library, f.destroy_context, "OSMesaDestroyContext");
-        find(library, f.get_proc_address, "OSMesaGetProcAddress");
+        find_function(library, f.create_context_attribs, "OSMesaCreateContextAttribs", "libOSMesa");
+        find_function(library, f.make_current, "OSMesaMakeCurrent", "libOSMesa");
+        find_function(library, f.destroy_context, "OSMesaDestroyContext", "libOSMesa");
+        find_function(library, f.get_proc_address, "OSMesaGetProcAddress", "libOSMesa");
         return f;
     }();
     return functions;

@@ -17,6 +17,7 @@
 #include <regex>
 #include <sstream>
 #include <sys/wait.h>
+#include <utility>
 
 namespace glint {
 namespace {
@@ -124,6 +125,32 @@ TEST(Cli, RenderAndCompareWriteTheResolveCountersUnderTheirFieldNames) {
     for_each_field(rays, [&](const std::string& name, auto) {
         EXPECT_TRUE(stats["rays"].contains(name)) << name;
     });
+}
+
+// A process loads only what its run uses (DESIGN's "model only what a scene requires"): a
+// ray-mode render loads no GL library (OSMesa and EGL are opened when a context is made:
+// raster/gl_library.h), no MPI (glint-mpi's alone) and no OpenEXR (its plug-in, opened for an
+// EXR), as the dynamic loader lists what it loads (LD_DEBUG=files, libraries opened at run time
+// included). Hybrid renders with each GL backend load their library, so the listing is seen to
+// cover what is opened late.
+TEST(Cli, ARayModeRenderLoadsNoGlMpiOrExrLibrary) {
+    const fs::path dir = fresh_dir();
+    const std::string render =
+        "render '" GLINT_SOURCE_DIR "/scenes/default.json' --size 16x12 --threads 1 ";
+    const auto loads = [](const Outcome& run, const std::string& library) {
+        return run.err.find("file=" + library) != std::string::npos;
+    };
+    const Outcome ray = glint(dir, render + "--mode ray -o r.png", "env LD_DEBUG=files");
+    ASSERT_EQ(ray.exit_code, 0) << ray.err;
+    ASSERT_TRUE(loads(ray, "libtbb")) << "no listing from the loader: " << ray.err.substr(0, 400);
+    for (const char* library : {"libEGL", "libOSMesa", "libmpi", "libOpenEXR", "libglint_exr"})
+        EXPECT_FALSE(loads(ray, library)) << library;
+    for (const auto& [gl, library] : {std::pair{"osmesa", "libOSMesa"}, {"egl", "libEGL"}}) {
+        const Outcome hybrid =
+            glint(dir, render + "--mode hybrid --gl " + gl + " -o h.png", "env LD_DEBUG=files");
+        ASSERT_EQ(hybrid.exit_code, 0) << gl << ": " << hybrid.err.substr(0, 400);
+        EXPECT_TRUE(loads(hybrid, library)) << gl;
+    }
 }
 
 // GLINT_KERNEL chooses the SIMD kernel (trace/kernel.h): --stats and `glint info` name the one
