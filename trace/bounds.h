@@ -4,6 +4,7 @@
 #include "trace/math.h"
 #include "trace/ray.h"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -22,6 +23,17 @@ struct Bounds {
         return 2.0_r * (d.x * d.y + d.y * d.z + d.z * d.x);
     }
 };
+
+// `b` widened on every axis by a few ulps of its largest coordinate (|lo| + |hi| + extent):
+// a triangle test's distance errs with the triangle's size, not with the distance, so a flat
+// box padded along its thin axis alone could leave a computed hit outside it, before the box's
+// entry, and pruning against that box then depended on the order things were met in (a quad 24
+// across, 0.0015 from the ray's origin: fuzz/seeds/nff/near-quads.nff, tests/accel_test.cpp).
+inline Bounds padded(Bounds b) {
+    const Vec3 reach = glm::abs(b.lo) + glm::abs(b.hi) + (b.hi - b.lo);
+    const Vec3 pad(std::max({reach.x, reach.y, reach.z}) * (8 * kUnitRoundoff));
+    return {b.lo - pad, b.hi + pad};
+}
 
 // A ray prepared for many box tests: branch-free slabs. Components of 1/direction that are
 // infinite (the ray is parallel to an axis) are replaced by ±1e30, so that a box face in the

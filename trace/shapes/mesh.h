@@ -65,7 +65,7 @@ inline std::vector<Bounds> triangle_bounds(const Mesh& mesh) {
     for (const glm::uvec3& t : mesh.triangles) {
         Bounds b;
         b.extend(mesh.vertices[t.x]), b.extend(mesh.vertices[t.y]), b.extend(mesh.vertices[t.z]);
-        boxes.push_back(b);
+        boxes.push_back(padded(b));
     }
     return boxes;
 }
@@ -187,9 +187,10 @@ intersect_triangles(const TriangleBlock& block, std::uint32_t lanes, const Water
 #endif
 }
 
-// Builds what intersect_mesh reads: the vertices and their bounds, above 8 triangles a BVH over
-// them (the bottom level of a two-level structure: to the top level a mesh is one object), and
-// every triangle's corners in blocks in the order the BVH reads them.
+// Builds what intersect_mesh reads: the vertices and their bounds (padded(), as the triangles'
+// boxes are), above 8 triangles a BVH over them (the bottom level of a two-level structure: to the
+// top level a mesh is one object), and every triangle's corners in blocks in the order the BVH
+// reads them.
 inline Mesh prepare_mesh(const TriangleMesh& given) {
     Mesh mesh;
     mesh.triangles = given.triangles;
@@ -198,6 +199,7 @@ inline Mesh prepare_mesh(const TriangleMesh& given) {
         mesh.vertices.push_back(Vec3(v));
         mesh.bounds.extend(mesh.vertices.back());
     }
+    mesh.bounds = padded(mesh.bounds);
     for (const glm::vec3& n : given.normals) mesh.normals.push_back(Vec3(n));
     mesh.uvs = given.uvs;
     mesh.colours = given.colours;
