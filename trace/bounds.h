@@ -26,9 +26,11 @@ struct Bounds {
 
 // `b` widened on every axis by a few ulps of its largest coordinate (|lo| + |hi| + extent):
 // a triangle test's distance errs with the triangle's size, not with the distance, so a flat
-// box padded along its thin axis alone could leave a computed hit outside it, before the box's
-// entry, and pruning against that box then depended on the order things were met in (a quad 24
-// across, 0.0015 from the ray's origin: fuzz/seeds/nff/near-quads.nff, tests/accel_test.cpp).
+// box left unpadded (as a mesh's own box was) or padded along its thin axis alone could leave a
+// computed hit outside it, before the box's entry, and pruning against that box then depended
+// on the order things were met in (a quad 24 across, 0.0015 from the ray's origin:
+// fuzz/seeds/nff/near-quads.nff, tests/accel_test.cpp). An empty box (no point) comes back NaN,
+// which no slab test meets, as before.
 inline Bounds padded(Bounds b) {
     const Vec3 reach = glm::abs(b.lo) + glm::abs(b.hi) + (b.hi - b.lo);
     const Vec3 pad(std::max({reach.x, reach.y, reach.z}) * (8 * kUnitRoundoff));
