@@ -1,5 +1,7 @@
 #include "preview/window.h"
 
+#include "preview/glfw_library.h"
+
 #include <glad/gl.h> // before GLFW (GLFW_INCLUDE_NONE: glad provides the GL declarations)
 
 #define GLFW_INCLUDE_NONE
@@ -20,6 +22,8 @@ void record_error(int, const char* description) {
 } // namespace
 
 Window::Window(int width, int height, const char* title, bool resizable) {
+    if (const std::string problem = glfw_library_problem(); !problem.empty())
+        throw GlError("could not load GLFW (Debian's libglfw3): " + problem);
     glfwSetErrorCallback(record_error);
     last_error.clear();
     if (!glfwInit()) throw NoDisplayError(last_error.empty() ? "GLFW could not start" : last_error);

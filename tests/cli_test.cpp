@@ -129,11 +129,12 @@ TEST(Cli, RenderAndCompareWriteTheResolveCountersUnderTheirFieldNames) {
 
 // A process loads only what its run uses (DESIGN's "model only what a scene requires"): a
 // ray-mode render loads no GL library (OSMesa and EGL are opened when a context is made:
-// raster/gl_library.h), no MPI (glint-mpi's alone) and no OpenEXR (its plug-in, opened for an
-// EXR), as the dynamic loader lists what it loads (LD_DEBUG=files, libraries opened at run time
-// included). Hybrid renders with each GL backend load their library, so the listing is seen to
-// cover what is opened late.
-TEST(Cli, ARayModeRenderLoadsNoGlMpiOrExrLibrary) {
+// raster/gl_library.h), no GLFW or X11 (opened for a preview's window: preview/glfw_library.h),
+// no MPI (glint-mpi's alone) and no OpenEXR (its plug-in, opened for an EXR), as the dynamic
+// loader lists what it loads (LD_DEBUG=files, libraries opened at run time included). Hybrid
+// renders with each GL backend load their library, and a preview loads GLFW before it finds no
+// display, so the listing is seen to cover what is opened late.
+TEST(Cli, ARayModeRenderLoadsNoGlWindowMpiOrExrLibrary) {
     const fs::path dir = fresh_dir();
     const std::string render =
         "render '" GLINT_SOURCE_DIR "/scenes/default.json' --size 16x12 --threads 1 ";
@@ -143,7 +144,8 @@ TEST(Cli, ARayModeRenderLoadsNoGlMpiOrExrLibrary) {
     const Outcome ray = glint(dir, render + "--mode ray -o r.png", "env LD_DEBUG=files");
     ASSERT_EQ(ray.exit_code, 0) << ray.err;
     ASSERT_TRUE(loads(ray, "libtbb")) << "no listing from the loader: " << ray.err.substr(0, 400);
-    for (const char* library : {"libEGL", "libOSMesa", "libmpi", "libOpenEXR", "libglint_exr"})
+    for (const char* library :
+         {"libEGL", "libOSMesa", "libglfw", "libX11", "libmpi", "libOpenEXR", "libglint_exr"})
         EXPECT_FALSE(loads(ray, library)) << library;
     for (const auto& [gl, library] : {std::pair{"osmesa", "libOSMesa"}, {"egl", "libEGL"}}) {
         const Outcome hybrid =
@@ -151,6 +153,10 @@ TEST(Cli, ARayModeRenderLoadsNoGlMpiOrExrLibrary) {
         ASSERT_EQ(hybrid.exit_code, 0) << gl << ": " << hybrid.err.substr(0, 400);
         EXPECT_TRUE(loads(hybrid, library)) << gl;
     }
+    const Outcome preview = glint(dir, "preview '" GLINT_SOURCE_DIR "/scenes/default.json'",
+                                  "env -u DISPLAY -u WAYLAND_DISPLAY LD_DEBUG=files");
+    EXPECT_EQ(preview.exit_code, 1) << preview.err.substr(0, 400);
+    EXPECT_TRUE(loads(preview, "libglfw"));
 }
 
 // GLINT_KERNEL chooses the SIMD kernel (trace/kernel.h): --stats and `glint info` name the one
