@@ -5,10 +5,10 @@
 // the header's signature, and forwards to libglfw.so.3's own, found on first use.
 #include "preview/glfw_library.h"
 
+#include "raster/gl_library.h"
+
 #define GLFW_INCLUDE_NONE // no GL header: glad's, where GL is called (DESIGN §6's pitfalls)
 #include <GLFW/glfw3.h>
-
-#include <dlfcn.h>
 
 #include <algorithm>
 #include <cstddef>
@@ -18,16 +18,19 @@ namespace {
 
 struct Library {
     void* handle = nullptr;
-    std::string problem; // why it did not open; empty where it did
+    std::string problem; // why it cannot be used; empty where it can
 };
 
 const Library& glfw() {
     static const Library opened = [] {
         Library library;
-        library.handle = ::dlopen(kGlfwLibrary, RTLD_NOW | RTLD_LOCAL);
-        if (!library.handle) {
-            const char* reason = ::dlerror();
-            library.problem = reason ? reason : kGlfwLibrary;
+        try {
+            void* handle = open_gl_library({kGlfwLibrary}, "GLFW (libglfw3)");
+            int (*init)() = nullptr;
+            find_function(handle, init, "glfwInit", kGlfwLibrary);
+            library.handle = handle;
+        } catch (const GlError& e) {
+            library.problem = e.what();
         }
         return library;
     }();
@@ -41,8 +44,8 @@ template <std::size_t N> struct Name {
 };
 
 // Calls libglfw's `kName`, of the header's type `Function`. Without the library (or the name in
-// it), does nothing and returns a zero value: the window opens nothing then, having thrown first
-// (Window::Window checks glfw_library_problem()).
+// it), does nothing and returns a zero value: no window is made then, open_glfw() having thrown
+// first (Window::Window).
 template <Name kName, class Function, class... Args> auto call_glfw(Args... args) {
     static const auto function =
         glfw().handle ? reinterpret_cast<Function>(::dlsym(glfw().handle, kName.text)) : nullptr;
@@ -53,11 +56,8 @@ template <Name kName, class Function, class... Args> auto call_glfw(Args... args
 
 } // namespace
 
-std::string glfw_library_problem() {
-    const Library& library = glfw();
-    if (!library.handle) return library.problem;
-    if (!::dlsym(library.handle, "glfwInit")) return std::string(kGlfwLibrary) + " lacks glfwInit";
-    return {};
+void open_glfw() {
+    if (!glfw().handle) throw GlError(glfw().problem);
 }
 
 } // namespace glint

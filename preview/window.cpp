@@ -22,8 +22,7 @@ void record_error(int, const char* description) {
 } // namespace
 
 Window::Window(int width, int height, const char* title, bool resizable) {
-    if (const std::string problem = glfw_library_problem(); !problem.empty())
-        throw GlError("could not load GLFW (Debian's libglfw3): " + problem);
+    open_glfw();
     glfwSetErrorCallback(record_error);
     last_error.clear();
     if (!glfwInit()) throw NoDisplayError(last_error.empty() ? "GLFW could not start" : last_error);

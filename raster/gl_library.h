@@ -1,5 +1,6 @@
-// The GL libraries glint opens when a context is first made rather than links (OSMesa, EGL):
-// a process that draws nothing, a ray-mode render, loads neither. Internal to raster/.
+// The GL libraries glint opens when a context is first made rather than links (OSMesa, EGL;
+// and GLFW for the preview's window, preview/glfw_library.cpp): a process that draws nothing,
+// a ray-mode render, loads none of them. For raster/ and preview/ alone.
 #pragma once
 
 #include "raster/gl_context.h"
