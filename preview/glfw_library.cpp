@@ -10,8 +10,11 @@
 #define GLFW_INCLUDE_NONE // no GL header: glad's, where GL is called (DESIGN §6's pitfalls)
 #include <GLFW/glfw3.h>
 
+#include <dlfcn.h>
+
 #include <algorithm>
 #include <cstddef>
+#include <string>
 
 namespace glint {
 namespace {
@@ -26,7 +29,7 @@ const Library& glfw() {
         Library library;
         try {
             void* handle = open_gl_library({kGlfwLibrary}, "GLFW (libglfw3)");
-            int (*init)() = nullptr;
+            decltype(&::glfwInit) init = nullptr; // checked for: a library that is GLFW's
             find_function(handle, init, "glfwInit", kGlfwLibrary);
             library.handle = handle;
         } catch (const GlError& e) {
