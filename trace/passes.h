@@ -65,18 +65,7 @@ class ThreadSchedule final : public TileSchedule {
     TileProgress progress_;
 };
 
-struct FrameRequest {
-    bool aovs = false;          // keep each pixel centre's primary hit (RenderResult::aovs)
-    // Keep each pixel's object id (RenderResult::ids): what compare, tradeoff and the MPI
-    // exchange read. A plain render reads none, and leaves the layer out.
-    bool ids = true;
-    // Keep the float images (RenderResult::radiance, clamped): what an EXR, compare, tradeoff,
-    // the preview, the Python module and the MPI exchange read. false: the display bytes alone
-    // (RenderResult::display_bytes), all a PNG and its report read.
-    bool radiance = true;
-    bool centres_first = false; // uniform grids too start with a centres pass (a first look)
-    CentreObserver* observer = nullptr;
-};
+// FrameRequest, what a frame keeps besides its colours: trace/tile_shading.h.
 
 // The frame of `world`, primary hits from `source`, its passes' tiles traced by `schedule`,
 // each pass's primary-hit and shading parts timed into `times`. A cancelled frame returns what

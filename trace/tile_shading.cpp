@@ -1,7 +1,5 @@
 #include "trace/tile_shading.h"
 
-#include "trace/passes.h"
-
 namespace glint {
 inline namespace GLINT_PRECISION {
 

@@ -47,7 +47,19 @@ inline void store_aovs(RenderResult& result, std::size_t i, const Hit& hit, Vec3
     result.aovs.id[i] = hit.object + 1;
 }
 
-struct FrameRequest; // trace/passes.h
+// What a frame keeps besides its pixels' colours (trace/passes.h's run_frame reads it).
+struct FrameRequest {
+    bool aovs = false;          // keep each pixel centre's primary hit (RenderResult::aovs)
+    // Keep each pixel's object id (RenderResult::ids): what compare, tradeoff and the MPI
+    // exchange read. A plain render reads none, and leaves the layer out.
+    bool ids = true;
+    // Keep the float images (RenderResult::radiance, clamped): what an EXR, compare, tradeoff,
+    // the preview, the Python module and the MPI exchange read. false: the display bytes alone
+    // (RenderResult::display_bytes), all a PNG and its report read.
+    bool radiance = true;
+    bool centres_first = false; // uniform grids too start with a centres pass (a first look)
+    CentreObserver* observer = nullptr;
+};
 
 // An empty result for `world`'s image: the float images (the clamped one where a pixel's
 // samples are N > 1), or the display bytes alone where `request` asks for no radiance; the
