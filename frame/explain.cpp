@@ -127,8 +127,14 @@ void write_ray(std::string& out, const Facts& facts, const PixelExplanation& e, 
         line("  passes through " + facts.object(c.object) + " at t = " + num(c.t) +
              ": cut out there (alpha " + num(c.alpha) + " < cut-off " + num(c.cutoff) + ")");
     if (!r.hit.found()) {
-        line("  hits nothing: the background");
-        line("  R_" + std::to_string(i) + " = background = " + colour(r.colour));
+        if (const Environment* environment = facts.world.environment()) {
+            line("  hits nothing: leaves the scene into the environment (" +
+                 printable(environment->name) + ")");
+            line("  R_" + std::to_string(i) + " = environment(d) = " + colour(r.colour));
+        } else {
+            line("  hits nothing: the background");
+            line("  R_" + std::to_string(i) + " = background = " + colour(r.colour));
+        }
         return;
     }
     const std::uint32_t o = r.hit.object;
@@ -275,6 +281,8 @@ std::string explanation_json(const Scene& scene, const World& world, const Pixel
                                   {"cutoff", real(c.cutoff)}});
             ray["cut_through"] = std::move(passed);
         }
+        if (!r.hit.found()) // what the ray that left the scene returned
+            ray[world.environment() ? "environment" : "background"] = json_vec(DVec3(r.colour));
         if (r.hit.found()) {
             const std::uint32_t o = r.hit.object;
             const Ray& local = e.object_rays[i];

@@ -441,7 +441,8 @@ void ItemBuffer::upload(const World& world, RasterMode mode, int tessellation) {
     gl.cut_outs.clear();
     gl.release_alpha_textures();
     std::map<const Mesh*, std::size_t> mesh_geometry; // each mesh uploaded once
-    std::map<const Mesh*, std::size_t> cut_out_geometry; // with texture coordinates
+    // With the texture coordinates the alpha test reads, by set.
+    std::map<std::pair<const Mesh*, int>, std::size_t> cut_out_geometry;
     std::map<std::tuple<const TextureImage*, Wrap, Wrap>, GLuint> alpha_of;
     deviations_.assign(world.objects().size(), 0.0f);
     // One proxy box per distinct object-space box, and one tessellation per distinct shape and
@@ -463,13 +464,18 @@ void ItemBuffer::upload(const World& world, RasterMode mode, int tessellation) {
             gl.planes.push_back(i);
             continue;
         }
+        // Meshes that cut out or are one-sided (DESIGN §13, §14): drawn one by one, with the
+        // alpha test and the face culling their intersections apply.
         if (traits.raster == RasterAs::triangles && o.params.cut_out) {
             const Mesh& mesh = *o.params.mesh;
-            auto [it, added] = cut_out_geometry.emplace(&mesh, 0);
-            if (added) it->second = gl.add_geometry(mesh.vertices, mesh.triangles, mesh.uvs);
+            const CutOut& cut = *o.params.cut_out;
+            const Texture* texture = cut.cuts ? cut.texture : nullptr;
+            const int set = texture ? texture->set : 0;
+            auto [it, added] = cut_out_geometry.emplace(std::pair{&mesh, set}, 0);
+            if (added)
+                it->second = gl.add_geometry(mesh.vertices, mesh.triangles, mesh_uvs(mesh, set));
             GLuint alpha = 0;
-            const Texture* texture = o.params.cut_out->texture;
-            if (texture && !mesh.uvs.empty() && !texture->image->alpha.empty()) {
+            if (texture && !mesh_uvs(mesh, set).empty() && !texture->image->alpha.empty()) {
                 auto [t, made] = alpha_of.emplace(
                     std::make_tuple(texture->image.get(), texture->wrap_s, texture->wrap_t), 0);
                 if (made) t->second = gl.alpha_texture(*texture);
@@ -669,7 +675,17 @@ void ItemBuffer::Impl::draw_cut_outs(const World& world, const glm::dmat4& clip,
         glUniform1ui(id_at, d.object + 1);
         glUniform3fv(diffuse_at, 1, glm::value_ptr(world.material(d.object).diffuse));
         glUniform1f(alpha_at, cut.alpha);
-        glUniform1f(cutoff_at, cut.cutoff);
+        glUniform1f(cutoff_at, cut.cuts ? cut.cutoff : 0.0f);
+        // One-sided faces: the side the intersection keeps (counter-clockwise in object space)
+        // is GL's front face, counter-clockwise in the window under a positive determinant and
+        // clockwise under a negative one (glTF 2.0, 3.7.4).
+        if (cut.one_sided) {
+            glEnable(GL_CULL_FACE);
+            glCullFace(GL_BACK);
+            glFrontFace(glm::determinant(o.transform.linear) > 0 ? GL_CCW : GL_CW);
+        } else {
+            glDisable(GL_CULL_FACE);
+        }
         glUniform1i(textured_at, d.alpha_texture != 0);
         const glm::mat3 uv_transform = cut.texture ? cut.texture->uv_transform : glm::mat3(1.0f);
         glUniformMatrix3fv(uv_at, 1, GL_FALSE, glm::value_ptr(uv_transform));
@@ -677,6 +693,8 @@ void ItemBuffer::Impl::draw_cut_outs(const World& world, const glm::dmat4& clip,
         glBindVertexArray(geometries[d.geometry].vao);
         glDrawElements(GL_TRIANGLES, geometries[d.geometry].index_count, GL_UNSIGNED_INT, nullptr);
     }
+    glDisable(GL_CULL_FACE);
+    glFrontFace(GL_CCW);
     glBindTexture(GL_TEXTURE_2D, 0);
 }
 

@@ -238,12 +238,18 @@ TEST(SceneCheck, EachRuleNamesThePartsModelPathThroughTheLoadersPlaces) {
     bad.render.samples = 17;
     EXPECT_EQ(refusal(bad), "here: render/samples: must be between 1 and 16, got 17");
     bad = scene;
-    bad.meshes.push_back({{glm::vec3(0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0)}, {{0, 1, 3}}, {}, {}, {}, {}});
+    bad.meshes.push_back(
+        {{glm::vec3(0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0)}, {{0, 1, 3}}, {}, {}, {}, {}, {}});
     EXPECT_EQ(refusal(bad), "here: meshes/0/indices/2: must be between 0 and 2, got 3");
     for (const float y : {3e15f, std::numeric_limits<float>::quiet_NaN()}) {
         bad = scene;
-        bad.meshes.push_back(
-            {{glm::vec3(0), glm::vec3(1, y, 0), glm::vec3(0, 1, 0)}, {{0, 1, 2}}, {}, {}, {}, {}});
+        bad.meshes.push_back({{glm::vec3(0), glm::vec3(1, y, 0), glm::vec3(0, 1, 0)},
+                              {{0, 1, 2}},
+                              {},
+                              {},
+                              {},
+                              {},
+                              {}});
         EXPECT_EQ(refusal(bad), "here: meshes/0/vertices/1/1: coordinates must be within ±1e15");
     }
     bad = scene;

@@ -13,17 +13,35 @@ glm::dvec3 ray_radiance_bound(const Scene& scene) {
     glm::dvec3 light_sum(0.0);
     for (const PointLight& light : scene.lights) light_sum += glm::dvec3(light.color);
     glm::dvec3 local = glm::dvec3(scene.background);
+    if (scene.environment) // a ray that leaves returns at most the environment's brightest texel
+        for (std::size_t i = 0; i < scene.environment->rgb.size(); ++i)
+            local[static_cast<int>(i % 3)] =
+                std::max(local[static_cast<int>(i % 3)], double(scene.environment->rgb[i]));
     double reflectivity = 0;
     for (const Material& m : scene.materials) {
-        const auto hit = [&](glm::vec3 ambient, glm::vec3 diffuse) {
+        glm::dvec3 specular(m.specular);
+        double reflects = m.reflectivity;
+        const auto hit = [&](glm::dvec3 ambient, glm::dvec3 diffuse) {
             // Emission: its texture's texels are at most 1.
-            return glm::dvec3(ambient) * glm::dvec3(scene.ambient) + glm::dvec3(m.emission) +
-                   light_sum * (glm::dvec3(diffuse) + glm::dvec3(m.specular));
+            return ambient * glm::dvec3(scene.ambient) + glm::dvec3(m.emission) +
+                   light_sum * (diffuse + specular);
         };
-        local = glm::max(local, hit(m.ambient, m.diffuse));
-        if (m.checker.size > 0) local = glm::max(local, hit(m.checker.ambient, m.checker.diffuse));
+        if (const std::optional<Material::MetalRough>& p = m.metal_rough) {
+            // Per texel (DESIGN §14), with texels at most 1: k_d at most b(1 − t) (no metal),
+            // k_s the larger of 0.04 and b, the reflectivity the metallic factor's, k_a their sum.
+            const glm::dvec3 b(p->base);
+            const glm::dvec3 diffuse = b * double(1 - p->transmission) * double(p->coverage);
+            specular = glm::max(glm::dvec3(0.04), b) * double(p->coverage);
+            reflects = double(p->metallic) * p->coverage;
+            local = glm::max(local, hit(diffuse + specular, diffuse));
+        } else {
+            local = glm::max(local, hit(glm::dvec3(m.ambient), glm::dvec3(m.diffuse)));
+        }
+        if (m.checker.size > 0)
+            local =
+                glm::max(local, hit(glm::dvec3(m.checker.ambient), glm::dvec3(m.checker.diffuse)));
         // A hit may cast both a reflected and a transmitted ray: their factors add.
-        reflectivity = std::max(reflectivity, double(m.reflectivity) + double(m.transmission));
+        reflectivity = std::max(reflectivity, reflects + double(m.transmission));
     }
     if (reflectivity < 1) return local / (1 - reflectivity);
     constexpr double inf = std::numeric_limits<double>::infinity();

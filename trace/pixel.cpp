@@ -14,7 +14,7 @@ PixelSample shade_pixel(const World& world, const Ray& ray, const Hit& primary,
     if (recorder) recorder->begin(RayKind::primary, ray, primary, 1, 1, 0);
     if (!primary.found()) {
         sample.note(0);
-        sample.colour = world.background();
+        sample.colour = world.missed(ray);
     } else {
         const SurfacePoint surface =
             ahead.surfaces ? ahead.surfaces[ahead.node] : world.surface(ray, primary);
@@ -67,8 +67,9 @@ void TileLighting::cast_secondary(const World& world, std::size_t begin, std::si
         const AheadNode& node = nodes_[n];
         if (!node.hit.found()) continue;
         const Phong& m = world.material(node.hit.object);
-        const Real reflected = node.weight * m.reflectivity;
-        if (m.reflectivity > 0 && casts_secondary(settings, depth, reflected, none))
+        const Real reflectivity = reflectivity_at(world, node.hit);
+        const Real reflected = node.weight * reflectivity;
+        if (reflectivity > 0 && casts_secondary(settings, depth, reflected, none))
             gather(reflected_ray(node.ray, surfaces_[n]), n, 0, reflected);
         const Real transmitted = node.weight * m.transmission;
         if (m.transmission > 0 && casts_secondary(settings, depth, transmitted, none))

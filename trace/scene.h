@@ -86,6 +86,8 @@ struct Texture {
     // Its bytes are sRGB-encoded colours to decode to linear before filtering (a glTF base
     // colour or emissive texture under `glint render --colour srgb`); else byte / 255.
     bool srgb = false;
+    // Which of a mesh's texture coordinate sets it reads: 0 (TriangleMesh::uvs) or 1 (uvs1).
+    int set = 0;
 };
 
 inline constexpr std::uint32_t kNoTexture = ~std::uint32_t{0};
@@ -116,6 +118,23 @@ struct Material {
     // x and y scaled by `normal_scale` (docs/SCENES.md, "Normal maps").
     std::uint32_t normal_texture = kNoTexture;
     float normal_scale = 1.0f;
+    // False: one-sided (a glTF material's `doubleSided: false`, DESIGN §14): a triangle whose
+    // winding faces away from the ray is no hit. JSON, OBJ and NFF materials are two-sided.
+    bool double_sided = true;
+    // A glTF metallic-roughness material (DESIGN §14): shading derives the Phong colours above
+    // from these per texel. The fields above hold them with every texel 1 (the preview's colour).
+    struct MetalRough {
+        glm::vec3 base{1.0f};  // baseColorFactor's RGB
+        float metallic = 1.0f; // metallicFactor
+        float roughness = 1.0f;
+        float transmission = 0.0f;
+        float occlusion_strength = 1.0f;
+        // alphaMode BLEND: what shows of the surface (the factor's alpha); 1 elsewhere.
+        float coverage = 1.0f;
+        std::uint32_t metal_rough_texture = kNoTexture; // metallic in blue, roughness in green
+        std::uint32_t occlusion_texture = kNoTexture;   // in red
+    };
+    std::optional<MetalRough> metal_rough;
 };
 
 // Triangles as given (counter-clockwise front), object space.
@@ -124,8 +143,9 @@ struct TriangleMesh {
     std::vector<glm::uvec3> triangles; // indices into vertices
     // One unit shading normal per vertex (smooth shading), or none (flat: the facet normal).
     std::vector<glm::vec3> normals;
-    // One texture coordinate per vertex (u right, v down from the image's top row), or none.
-    std::vector<glm::vec2> uvs;
+    // One texture coordinate per vertex (u right, v down from the image's top row), or none;
+    // `uvs1` the second set (glTF's TEXCOORD_1), or none.
+    std::vector<glm::vec2> uvs, uvs1;
     // One colour per vertex (glTF's COLOR_0), multiplying the diffuse and ambient colours, or none.
     std::vector<glm::vec3> colours;
     // One tangent per vertex (glTF's TANGENT: xyz the direction of increasing u, w = ±1 the
@@ -169,6 +189,14 @@ struct RenderSettings {
     int packet_levels = 0;
 };
 
+// An environment (DESIGN §14): an equirectangular image of linear radiance that a ray leaving
+// the scene returns in its direction (trace/texture.h, environment_radiance).
+struct Environment {
+    std::string name; // the file, or "studio" for the built-in one
+    int width = 0, height = 0;
+    std::vector<float> rgb; // width × height × 3, top row first
+};
+
 struct Scene;
 
 // A model's motion (a glTF animation's node channels, io/gltf_animation.h): places the scene's
@@ -206,6 +234,8 @@ struct Scene {
     std::vector<std::string> warnings;
     // A model's animation, where one was asked for (`--time`, `--frames`): none otherwise.
     std::shared_ptr<const Animation> animation;
+    // What rays that leave the scene return (DESIGN §14), or none: the background colour.
+    std::shared_ptr<const Environment> environment;
 };
 
 // Building blocks of a scene's transform list (column vectors: p' = M·p).

@@ -13,7 +13,7 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, int depth, Real w
            RayTree& tree) {
     if (!hit.found()) {
         tree.note(0);
-        return world.background();
+        return world.missed(ray);
     }
     return shade(world, ray, hit, world.surface(ray, hit), depth, weight, tree);
 }
@@ -30,21 +30,37 @@ bool odd_cell(Real size, Vec3 q, bool in_plane) {
     return std::fmod(k, 2.0) != 0;
 }
 
-// The base colour texture's lookup at a hit, where the material has a texture and the object is
-// a mesh with texture coordinates (docs/SCENES.md, "Textures"): at the hit's barycentrics, the
+// A texture's lookup at a hit, where there is a texture and the object is a mesh with the
+// texture coordinate set it reads (docs/SCENES.md, "Textures"): at the hit's barycentrics, the
 // same in every pixel path, so hybrid and ray mode see the same texels.
 std::optional<TexelSample> texture_at(const World& world, const Texture* texture, const Hit& hit) {
     if (!texture) return std::nullopt;
     const Mesh* mesh = world.objects()[hit.object].params.mesh;
-    if (!mesh || mesh->uvs.empty()) return std::nullopt;
-    return sample_texture(*texture, mesh_uv(*mesh, hit.primitive, hit.u, hit.v));
+    if (!mesh || mesh_uvs(*mesh, texture->set).empty()) return std::nullopt;
+    return sample_texture(*texture, mesh_uv(*mesh, hit.primitive, hit.u, hit.v, texture->set));
 }
 
-// The material's emission at a hit (DESIGN §13): its colour × the emission texture's there.
+// The material's emission at a hit (DESIGN §13): its colour × the emission texture's there. An
+// emission texture the mesh cannot read (no coordinates of its set) leaves no emission (§14).
 Vec3 emission_at(const World& world, const Phong& m, const Hit& hit) {
     if (m.emission == Vec3(0.0_r)) return Vec3(0.0_r);
+    if (!m.emission_texture) return m.emission;
     const std::optional<TexelSample> texel = texture_at(world, m.emission_texture, hit);
-    return texel ? m.emission * Vec3(texel->colour) : m.emission;
+    return texel ? m.emission * Vec3(texel->colour) : Vec3(0.0_r);
+}
+
+// A glTF material's metallic m and roughness r at a hit (DESIGN §14): the factors × the
+// metallic-roughness texel's blue and green.
+std::pair<Real, Real> metal_rough_at(const World& world, const Phong::MetalRough& p,
+                                     const Hit& hit) {
+    const std::optional<TexelSample> texel = texture_at(world, p.metal_rough, hit);
+    return texel
+               ? std::pair{p.metallic * Real(texel->colour.z), p.roughness * Real(texel->colour.y)}
+               : std::pair{p.metallic, p.roughness};
+}
+
+Real reflectivity_of(Real metallic, Real roughness, Real coverage) {
+    return metallic * (1 - roughness) * (1 - roughness) * coverage;
 }
 
 // The fraction of a light's colour that passes the glass on the shadow ray from `surface` to
@@ -91,6 +107,53 @@ Real light_through(const World& world, const SurfacePoint& surface, Vec3 light, 
 
 } // namespace
 
+SurfaceColours surface_colours(const World& world, const Hit& hit, const SurfacePoint& surface) {
+    const Phong& m = world.material(hit.object);
+    SurfaceColours out{m.ambient, m.diffuse, m.specular, m.shininess, m.reflectivity, false, {}};
+    out.odd_cell = m.checker_size > 0 &&
+                   odd_cell(m.checker_size, surface.object_point,
+                            shape_traits(world.objects()[hit.object].shape).checker_in_plane);
+    if (out.odd_cell) out.diffuse = m.checker_diffuse, out.ambient = m.checker_ambient;
+    // The base colour: the material's (or its checker cell's) × texel × vertex colour.
+    Vec3 base(1.0_r);
+    out.texel = texture_at(world, m.texture, hit);
+    if (out.texel) base *= Vec3(out.texel->colour);
+    // A mesh's vertex colours multiply the base colour too (glTF's COLOR_0).
+    if (const Mesh* mesh = world.objects()[hit.object].params.mesh;
+        mesh && !mesh->colours.empty()) {
+        const glm::uvec3 tri = mesh->triangles[hit.primitive];
+        const Real b1 = hit.u, b2 = hit.v, b0 = 1 - b1 - b2;
+        base *= b0 * Vec3(mesh->colours[tri.x]) + b1 * Vec3(mesh->colours[tri.y]) +
+                b2 * Vec3(mesh->colours[tri.z]);
+    }
+    if (!m.metal_rough) {
+        out.diffuse *= base;
+        out.ambient *= base;
+        return out;
+    }
+    // DESIGN §14, per texel; BLEND's coverage scales what shows of the surface.
+    const Phong::MetalRough& p = *m.metal_rough;
+    const Vec3 b = p.base * base;
+    const auto [metallic, roughness] = metal_rough_at(world, p, hit);
+    Real occlusion = 1;
+    if (const std::optional<TexelSample> o = texture_at(world, p.occlusion, hit))
+        occlusion = 1 + p.occlusion_strength * (Real(o->colour.x) - 1);
+    out.diffuse = b * ((1 - metallic) * (1 - p.transmission) * p.coverage);
+    out.specular = (Vec3(0.04_r * (1 - metallic)) + b * metallic) * p.coverage;
+    const Real alpha = roughness * roughness;
+    out.shininess = alpha > 0 ? std::clamp(2 / (alpha * alpha) - 2, 1.0_r, 1e6_r) : 1e6_r;
+    out.reflectivity = reflectivity_of(metallic, roughness, p.coverage);
+    out.ambient = occlusion * (out.diffuse + out.specular * (1 - out.reflectivity));
+    return out;
+}
+
+Real reflectivity_at(const World& world, const Hit& hit) {
+    const Phong& m = world.material(hit.object);
+    if (!m.metal_rough) return m.reflectivity;
+    const auto [metallic, roughness] = metal_rough_at(world, *m.metal_rough, hit);
+    return reflectivity_of(metallic, roughness, m.metal_rough->coverage);
+}
+
 // The lecture's sum, with §11's checker, shadows through glass and transmitted rays, in one
 // body: the local terms and the two kinds of secondary ray share the weight rule and its
 // counters.
@@ -100,26 +163,10 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoin
     const Phong& m = world.material(hit.object);
     const Vec3 n = surface.shading;
     const Vec3 v = -glm::normalize(ray.direction);
-    const bool odd = m.checker_size > 0 &&
-                     odd_cell(m.checker_size, surface.object_point,
-                              shape_traits(world.objects()[hit.object].shape).checker_in_plane);
-    Vec3 diffuse = odd ? m.checker_diffuse : m.diffuse;
-    Vec3 ambient = odd ? m.checker_ambient : m.ambient;
-    const std::optional<TexelSample> texel = texture_at(world, m.texture, hit);
-    if (texel) {
-        diffuse *= Vec3(texel->colour);
-        ambient *= Vec3(texel->colour);
-    }
-    // A mesh's vertex colours multiply the base colour too (glTF's COLOR_0).
-    if (const Mesh* mesh = world.objects()[hit.object].params.mesh;
-        mesh && !mesh->colours.empty()) {
-        const glm::uvec3 tri = mesh->triangles[hit.primitive];
-        const Real b1 = hit.u, b2 = hit.v, b0 = 1 - b1 - b2;
-        const Vec3 vertex = b0 * Vec3(mesh->colours[tri.x]) + b1 * Vec3(mesh->colours[tri.y]) +
-                            b2 * Vec3(mesh->colours[tri.z]);
-        diffuse *= vertex;
-        ambient *= vertex;
-    }
+    const SurfaceColours colours = surface_colours(world, hit, surface);
+    const Vec3 &diffuse = colours.diffuse, &ambient = colours.ambient, &specular = colours.specular;
+    const bool odd = colours.odd_cell;
+    const std::optional<TexelSample>& texel = colours.texel;
     tree.note((static_cast<std::uint64_t>(hit.object) + 1) * 2 + (odd ? 1 : 0));
     RayRecorder* const recorder = tree.recorder;
     const Real* const known_light =
@@ -150,16 +197,16 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoin
         }
         Vec3 lit = diffuse * n_dot_l;
         Real highlight = 0; // (r·v)^shininess
-        if (m.specular != Vec3(0.0_r)) { // pow is dear, and NFF's matte surfaces have 1e5
+        if (specular != Vec3(0.0_r)) { // pow is dear, and NFF's matte surfaces have 1e5
             const Vec3 r = 2.0_r * n * n_dot_l - l; // reflect(−l, n)
-            highlight = std::pow(glm::max(0.0_r, glm::dot(r, v)), m.shininess);
-            lit += m.specular * highlight;
+            highlight = std::pow(glm::max(0.0_r, glm::dot(r, v)), colours.shininess);
+            lit += specular * highlight;
         }
         colour += (through * light.color) * lit;
         if (recorder)
             recorder->light({index, n_dot_l, through, counts.shadow - shadow_rays,
                              (through * light.color) * (diffuse * n_dot_l),
-                             (through * light.color) * (m.specular * highlight)});
+                             (through * light.color) * (specular * highlight)});
     }
 
     // Reflected and transmitted rays, each cast only while it can still matter
@@ -201,8 +248,9 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoin
         if (recorder) recorder->end(seen);
         colour += factor * seen;
     };
-    if (m.reflectivity > 0)
-        follow(RayKind::reflection, m.reflectivity, [&] { return reflected_ray(ray, surface); });
+    if (colours.reflectivity > 0)
+        follow(RayKind::reflection, colours.reflectivity,
+               [&] { return reflected_ray(ray, surface); });
     if (m.transmission > 0)
         follow(RayKind::transmission, m.transmission,
                [&] { return transmitted_ray(ray, surface, m.ior); });

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "trace/render_result.h"
+#include "trace/texture.h"
 #include "trace/world.h"
 
 namespace glint {
@@ -41,6 +42,20 @@ struct RayTree {
         path_key ^= path_key >> 32;
     }
 };
+
+// The Phong inputs at a hit (§2's k_a, k_d, k_s, shininess, reflectivity): the material's, with
+// its checker cell, base colour texture and vertex colours; for a glTF metallic-roughness
+// material, derived per texel as DESIGN §14 says.
+struct SurfaceColours {
+    Vec3 ambient, diffuse, specular;
+    Real shininess, reflectivity;
+    bool odd_cell = false;            // the checker's odd cell
+    std::optional<TexelSample> texel; // the base colour texture's lookup, where it was read
+};
+SurfaceColours surface_colours(const World& world, const Hit& hit, const SurfacePoint& surface);
+
+// The reflectivity at a hit, as surface_colours finds it (the material's, or per texel).
+Real reflectivity_at(const World& world, const Hit& hit);
 
 // Whether `light` is in front of the surface (n·l > 0, n the shading normal), with l and n·l:
 // shade() casts a shadow ray only then, and a tile's shadow packets (trace/pixel.h) ask the same.

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace glint {
 
@@ -76,6 +77,24 @@ float sample_alpha(const Texture& texture, glm::vec2 uv) {
     };
     return (1 - b.wy) * ((1 - b.wx) * texel(b.x0, b.y0) + b.wx * texel(b.x1, b.y0)) +
            b.wy * ((1 - b.wx) * texel(b.x0, b.y1) + b.wx * texel(b.x1, b.y1));
+}
+
+glm::vec3 environment_radiance(const Environment& environment, glm::dvec3 d) {
+    const int w = environment.width, h = environment.height;
+    const double u = 0.5 + std::atan2(d.x, -d.z) / (2 * std::numbers::pi);
+    const double v = std::acos(std::clamp(d.y, -1.0, 1.0)) / std::numbers::pi;
+    // Continuous texel coordinates, centres at half-integers; NaN (a zero direction) reads 0.
+    const double x = std::isfinite(u) ? u * w - 0.5 : 0, y = std::isfinite(v) ? v * h - 0.5 : 0;
+    const double fx = std::floor(x), fy = std::floor(y);
+    const auto wx = static_cast<float>(x - fx), wy = static_cast<float>(y - fy);
+    const int x0 = wrap_index(fx, w, Wrap::repeat), x1 = wrap_index(fx + 1, w, Wrap::repeat);
+    const int y0 = wrap_index(fy, h, Wrap::clamp), y1 = wrap_index(fy + 1, h, Wrap::clamp);
+    const auto texel = [&](int tx, int ty) {
+        const float* p = &environment.rgb[(static_cast<std::size_t>(ty) * w + tx) * 3];
+        return glm::vec3(p[0], p[1], p[2]);
+    };
+    return (1 - wy) * ((1 - wx) * texel(x0, y0) + wx * texel(x1, y0)) +
+           wy * ((1 - wx) * texel(x0, y1) + wx * texel(x1, y1));
 }
 
 } // namespace glint

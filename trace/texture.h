@@ -21,4 +21,9 @@ TexelSample sample_texture(const Texture& texture, glm::vec2 uv);
 // (DESIGN §13: the same sampler and filter); 1 where the image has no alpha.
 float sample_alpha(const Texture& texture, glm::vec2 uv);
 
+// The environment's radiance in direction d (unit), DESIGN §14: u = 0.5 + atan2(d.x, −d.z)/2π,
+// v = acos(d.y)/π, u across and v down the image from its top-left corner, bilinear between
+// texel centres, wrapping in u and clamped in v. In double, for both precisions of the tracer.
+glm::vec3 environment_radiance(const Environment& environment, glm::dvec3 d);
+
 } // namespace glint

@@ -44,14 +44,25 @@ SceneGeometry::SceneGeometry(const Scene& scene) : textures(scene.textures) {
     };
     for (const Material& m : scene.materials) {
         std::optional<CutOut> cut_out;
-        if (m.cut_out)
-            cut_out = CutOut{texture(m.alpha_texture != kNoTexture ? m.alpha_texture : m.texture),
-                             m.alpha, m.alpha_cutoff};
+        if (m.cut_out || !m.double_sided)
+            cut_out = CutOut{m.cut_out,
+                             texture(m.alpha_texture != kNoTexture ? m.alpha_texture : m.texture),
+                             m.alpha, m.alpha_cutoff, !m.double_sided};
+        std::optional<Phong::MetalRough> metal_rough;
+        if (const std::optional<Material::MetalRough>& p = m.metal_rough)
+            metal_rough = Phong::MetalRough{Vec3(p->base),
+                                            p->metallic,
+                                            p->roughness,
+                                            p->transmission,
+                                            p->occlusion_strength,
+                                            p->coverage,
+                                            texture(p->metal_rough_texture),
+                                            texture(p->occlusion_texture)};
         materials.push_back({Vec3(m.ambient), Vec3(m.diffuse), Vec3(m.specular), m.shininess,
                              m.reflectivity, m.transmission, m.ior, m.checker.size,
                              Vec3(m.checker.diffuse), Vec3(m.checker.ambient), texture(m.texture),
                              cut_out, Vec3(m.emission), texture(m.emission_texture),
-                             texture(m.normal_texture), m.normal_scale});
+                             texture(m.normal_texture), m.normal_scale, metal_rough});
         transmissive |= m.transmission > 0;
         secondary |= m.reflectivity > 0 || m.transmission > 0;
     }
@@ -62,7 +73,7 @@ SceneGeometry::SceneGeometry(const Scene& scene) : textures(scene.textures) {
 
 World::World(const Scene& scene, std::shared_ptr<const SceneGeometry> geometry, CameraRelative)
     : geometry_(std::move(geometry)), camera_(scene.camera), background_(scene.background),
-      ambient_(scene.ambient), settings_(scene.render) {
+      ambient_(scene.ambient), environment_(scene.environment), settings_(scene.render) {
     // Camera-relative coordinates, composed in double: precision follows the scene's size, not
     // its distance from the world origin (docs/ARCHITECTURE.md, "Conventions": transforms).
     const DMat4 to_camera = translation_matrix(-scene.camera.eye);
@@ -578,8 +589,9 @@ Vec3 normal_mapped(const Mesh& mesh, const Phong& material, const Hit& hit, cons
     } else {
         const Vec3 dp1 = mesh.vertices[tri.y] - mesh.vertices[tri.x];
         const Vec3 dp2 = mesh.vertices[tri.z] - mesh.vertices[tri.x];
-        const glm::vec2 duv1 = mesh.uvs[tri.y] - mesh.uvs[tri.x];
-        const glm::vec2 duv2 = mesh.uvs[tri.z] - mesh.uvs[tri.x];
+        const std::vector<glm::vec2>& uvs = mesh_uvs(mesh, material.normal_texture->set);
+        const glm::vec2 duv1 = uvs[tri.y] - uvs[tri.x];
+        const glm::vec2 duv2 = uvs[tri.z] - uvs[tri.x];
         const Real det = Real(duv1.x) * duv2.y - Real(duv2.x) * duv1.y;
         if (det == 0) return n;
         tangent = (dp1 * Real(duv2.y) - dp2 * Real(duv1.y)) / det;
@@ -593,7 +605,7 @@ Vec3 normal_mapped(const Mesh& mesh, const Phong& material, const Hit& hit, cons
     b -= n * glm::dot(n, b);
     const Real tl = glm::length(t), bl = glm::length(b);
     if (!(tl > 0) || !(bl > 0) || !std::isfinite(tl) || !std::isfinite(bl)) return n;
-    const glm::vec2 uv = mesh_uv(mesh, hit.primitive, hit.u, hit.v);
+    const glm::vec2 uv = mesh_uv(mesh, hit.primitive, hit.u, hit.v, material.normal_texture->set);
     const Vec3 texel(sample_texture(*material.normal_texture, uv).colour);
     const Vec3 c = 2.0_r * texel - 1.0_r;
     const Vec3 mapped =
@@ -624,7 +636,8 @@ SurfacePoint World::surface(const Ray& ray, const Hit& hit) const {
             shading = (from_inside ? -smooth : smooth) / length;
     }
     const Phong& material = geometry_->materials[object.material];
-    if (material.normal_texture && object.params.mesh && !object.params.mesh->uvs.empty()) {
+    if (material.normal_texture && object.params.mesh &&
+        !mesh_uvs(*object.params.mesh, material.normal_texture->set).empty()) {
         const Vec3 outward = normal_mapped(*object.params.mesh, material, hit, m,
                                            s.shading != Vec3(0.0_r) ? s.shading : s.normal,
                                            from_inside ? -shading : shading);

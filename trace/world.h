@@ -7,6 +7,7 @@
 #include "trace/camera.h"
 #include "trace/scene.h"
 #include "trace/shapes/table.h"
+#include "trace/texture.h"
 #include "trace/transform.h"
 
 #include <tbb/enumerable_thread_specific.h>
@@ -35,12 +36,21 @@ struct Phong {
     Real checker_size; // 0: none
     Vec3 checker_diffuse, checker_ambient;
     const Texture* texture; // base colour texture (in SceneGeometry::textures), or none
-    // Where the material cuts out (DESIGN §13): what its meshes' intersections read.
+    // Where the material cuts out (DESIGN §13) or is one-sided (§14): what its meshes'
+    // intersections read.
     std::optional<CutOut> cut_out;
     Vec3 emission;                   // added unshadowed at every hit (DESIGN §13)
     const Texture* emission_texture; // multiplies `emission` where given, or none
     const Texture* normal_texture;   // a tangent-space normal map, or none
     Real normal_scale;
+    // A glTF metallic-roughness material (DESIGN §14), whose Phong inputs vary per texel
+    // (trace/shading.h, surface_colours); its textures in SceneGeometry::textures, or none.
+    struct MetalRough {
+        Vec3 base;
+        Real metallic, roughness, transmission, occlusion_strength, coverage;
+        const Texture *metal_rough, *occlusion;
+    };
+    std::optional<MetalRough> metal_rough;
 };
 
 struct Light {
@@ -160,6 +170,13 @@ class World {
         return geometry_->materials[objects_[object].material];
     }
     Vec3 background() const { return background_; }
+    // What a ray that hits nothing returns: the environment's radiance in its direction
+    // (DESIGN §14), or the background colour where the scene has none.
+    Vec3 missed(const Ray& ray) const {
+        if (!environment_) return background_;
+        return Vec3(environment_radiance(*environment_, glm::normalize(glm::dvec3(ray.direction))));
+    }
+    const Environment* environment() const { return environment_.get(); }
     Vec3 ambient() const { return ambient_; }
     const RenderSettings& settings() const { return settings_; }
     const std::shared_ptr<const SceneGeometry>& geometry() const { return geometry_; }
@@ -283,6 +300,7 @@ class World {
     std::vector<Object> objects_;
     std::vector<Light> lights_;
     Vec3 background_, ambient_;
+    std::shared_ptr<const Environment> environment_;
     RenderSettings settings_;
     std::vector<std::uint32_t> unbounded_; // planes: tested by every ray
     std::vector<std::uint32_t> bounded_;   // accelerator item → object index

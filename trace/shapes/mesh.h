@@ -42,7 +42,7 @@ struct Mesh {
     std::vector<Vec3> vertices;
     std::vector<glm::uvec3> triangles; // indices into vertices
     std::vector<Vec3> normals;         // per vertex, or empty (flat shading)
-    std::vector<glm::vec2> uvs;        // texture coordinates per vertex, or empty
+    std::vector<glm::vec2> uvs, uvs1;  // texture coordinates per vertex (sets 0 and 1), or empty
     std::vector<glm::vec3> colours;    // colours per vertex, or empty
     std::vector<glm::vec4> tangents;   // tangents per vertex (w: the bitangent's sign), or empty
     Bounds bounds;                     // of the vertices, object space
@@ -73,6 +73,9 @@ inline std::vector<Bounds> triangle_bounds(const Mesh& mesh) {
 struct TriangleHit {
     Real t = kInfinity;
     Real u = 0, v = 0; // barycentric weights of vertices 1 and 2
+    // The ray meets the triangle's counter-clockwise side: its winding normal, (p1 − p0) ×
+    // (p2 − p0), points back along the ray (the edge functions' sum is positive).
+    bool ccw = false;
 };
 
 // A ray prepared for the watertight test (Woop, Benthin & Wald, JCGT 2013): the axis of its
@@ -111,7 +114,7 @@ inline TriangleHit intersect_triangle(Vec3 p0, Vec3 p1, Vec3 p2, const Watertigh
     const Real det = u + v + w;
     if (det == 0) return {};
     const Real t = (u * r.sz * a[r.kz] + v * r.sz * b[r.kz] + w * r.sz * c[r.kz]) / det;
-    return {t, v / det, w / det};
+    return {t, v / det, w / det, det > 0};
 }
 
 inline TriangleHit intersect_triangle(Vec3 p0, Vec3 p1, Vec3 p2, const Ray& ray) {
@@ -159,6 +162,7 @@ intersect_triangles(const TriangleBlock& block, std::uint32_t lanes, const Water
     const unsigned edges = static_cast<unsigned>(_mm_movemask_ps(on_edge)) & all;
     const unsigned crossed = ~static_cast<unsigned>(_mm_movemask_ps(missed)) & all & ~edges;
     if ((crossed | edges) == 0) return 0;
+    const auto ccw = static_cast<unsigned>(_mm_movemask_ps(_mm_cmpgt_ps(det, zero)));
     const __m128 sz = _mm_set1_ps(r.sz);
     const __m128 t = _mm_div_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(u, sz), z[0]),
                                                       _mm_mul_ps(_mm_mul_ps(v, sz), z[1])),
@@ -175,7 +179,7 @@ intersect_triangles(const TriangleBlock& block, std::uint32_t lanes, const Water
             hits[i] =
                 intersect_triangle(block.corner(0, i), block.corner(1, i), block.corner(2, i), r);
         else if ((crossed >> i) & 1)
-            hits[i] = {t_out[i], b1[i], b2[i]};
+            hits[i] = {t_out[i], b1[i], b2[i], ((ccw >> i) & 1) != 0};
     return crossed | edges;
 #else
     unsigned may_hit = 0;
@@ -202,6 +206,7 @@ inline Mesh prepare_mesh(const TriangleMesh& given) {
     mesh.bounds = padded(mesh.bounds);
     for (const glm::vec3& n : given.normals) mesh.normals.push_back(Vec3(n));
     mesh.uvs = given.uvs;
+    mesh.uvs1 = given.uvs1;
     mesh.colours = given.colours;
     mesh.tangents = given.tangents;
     if (mesh.triangles.size() > 8) mesh.bvh = WideBvh(triangle_bounds(mesh), kTriangleLeaves);
@@ -228,32 +233,45 @@ inline void prefetch_block(const Mesh& mesh, std::uint32_t first) {
     prefetch_bytes(&mesh.blocks[first / kTriangleLanes], sizeof(TriangleBlock));
 }
 
-// The texture coordinates at barycentric weights (u, v) of triangle `triangle`, interpolated as
-// the surface is (mesh_surface); the mesh must have them.
-inline glm::vec2 mesh_uv(const Mesh& mesh, std::uint32_t triangle, Real u, Real v) {
+// The mesh's texture coordinate set `set` (0 or 1): empty where it has none.
+inline const std::vector<glm::vec2>& mesh_uvs(const Mesh& mesh, int set) {
+    return set == 1 ? mesh.uvs1 : mesh.uvs;
+}
+
+// The texture coordinates of set `set` at barycentric weights (u, v) of triangle `triangle`,
+// interpolated as the surface is (mesh_surface); the mesh must have them.
+inline glm::vec2 mesh_uv(const Mesh& mesh, std::uint32_t triangle, Real u, Real v, int set = 0) {
+    const std::vector<glm::vec2>& uvs = mesh_uvs(mesh, set);
     const glm::uvec3 tri = mesh.triangles[triangle];
     const float b1 = static_cast<float>(u), b2 = static_cast<float>(v);
-    return (1.0f - b1 - b2) * mesh.uvs[tri.x] + b1 * mesh.uvs[tri.y] + b2 * mesh.uvs[tri.z];
+    return (1.0f - b1 - b2) * uvs[tri.x] + b1 * uvs[tri.y] + b2 * uvs[tri.z];
 }
 
 // The alpha of a cut-out material at barycentric weights (u, v) of a triangle (DESIGN §13): the
-// factor times the texture's alpha there, where there is a texture and the mesh has texture
+// factor times the texture's alpha there, where there is a texture and the mesh has its texture
 // coordinates (as shading samples its colour).
 inline float cut_out_alpha(const Mesh& mesh, const CutOut& cut, std::uint32_t triangle, Real u,
                            Real v) {
-    if (!cut.texture || mesh.uvs.empty()) return cut.alpha;
-    return cut.alpha * sample_alpha(*cut.texture, mesh_uv(mesh, triangle, u, v));
+    if (!cut.texture || mesh_uvs(mesh, cut.texture->set).empty()) return cut.alpha;
+    return cut.alpha * sample_alpha(*cut.texture, mesh_uv(mesh, triangle, u, v, cut.texture->set));
 }
 
 // Whether a hit there is cut away: no hit, the ray goes on.
 inline bool cut_away(const Mesh& mesh, const CutOut& cut, std::uint32_t triangle, Real u, Real v) {
-    return cut_out_alpha(mesh, cut, triangle, u, v) < cut.cutoff;
+    return cut.cuts && cut_out_alpha(mesh, cut, triangle, u, v) < cut.cutoff;
+}
+
+// Whether `cut` makes a hit there no hit: a one-sided triangle seen from behind, or cut away.
+inline bool filtered_away(const Mesh& mesh, const CutOut& cut, std::uint32_t triangle,
+                          const TriangleHit& h) {
+    if (cut.one_sided && !h.ccw) return true;
+    return cut_away(mesh, cut, triangle, h.u, h.v);
 }
 
 // The triangles in slots [begin, end) (begin a multiple of kTriangleLanes) for one ray, a block
 // at a time: a triangle replaces `best` when it is hit in (0, t_max) nearer, or as near with a
-// lower triangle index, and is not cut away where `cut` is given. The one test of intersect_mesh
-// and intersect_mesh_packet.
+// lower triangle index, and is not filtered away where `cut` is given. The one test of
+// intersect_mesh and intersect_mesh_packet.
 template <class Counters>
 [[gnu::always_inline]] inline void
 consider_triangles(const Mesh& mesh, std::uint32_t begin, std::uint32_t end,
@@ -271,7 +289,7 @@ consider_triangles(const Mesh& mesh, std::uint32_t begin, std::uint32_t end,
             const std::uint32_t triangle = block.triangle[i];
             if (h.t > 0 && h.t < t_max &&
                 (h.t < best.t || (h.t == best.t && triangle < best.part)) &&
-                !(cut && cut_away(mesh, *cut, triangle, h.u, h.v)))
+                !(cut && filtered_away(mesh, *cut, triangle, h)))
                 best = {h.t, triangle, h.u, h.v};
         }
     }

@@ -51,13 +51,20 @@ struct ShapeTraits {
     ShapeKeys keys;
 };
 
-// A material that cuts out (DESIGN §13, docs/SCENES.md "Cut-outs"), as a mesh's intersection
-// reads it: a triangle's hit whose alpha, `alpha` × the texture's alpha at the hit's texture
-// coordinates (where the mesh has them), is below `cutoff` is no hit.
+// Which of a mesh's hits are no hits, as its intersection reads it: where the material cuts out
+// (DESIGN §13, docs/SCENES.md "Cut-outs"), a triangle's hit whose alpha, `alpha` × the texture's
+// alpha at the hit's texture coordinates (where the mesh has them), is below `cutoff`; where it
+// is one-sided (DESIGN §14), a triangle seen from behind.
 struct CutOut {
+    bool cuts = true;                 // the alpha test applies
     const Texture* texture = nullptr; // the base colour texture, or none
     float alpha = 1.0f;
     float cutoff = 0.5f;
+    // One-sided faces: only hits on a triangle's counter-clockwise side in object space (its
+    // winding normal towards the ray) count. Tested in object space, this is the side the
+    // placed normal M⁻ᵀn faces whatever M's determinant: the winding glTF flips under a
+    // negative determinant is the winding seen in the world.
+    bool one_sided = false;
 };
 
 inline namespace GLINT_PRECISION {
