@@ -19,7 +19,8 @@ namespace fs = std::filesystem;
 
 // The keywords that change what is read from the scene's file: given to a call, it reads the file
 // again instead of using glint.load's scene.
-constexpr const char* kReadingKeywords[] = {"size", "camera", "time", "animation", "colour"};
+constexpr const char* kReadingKeywords[] = {"size",      "camera", "time",
+                                            "animation", "colour", "framing"};
 
 // What a call's command offers that a call cannot take: files it would write, and compare's
 // sides (Scene.compare's own arguments). glint.load takes only the keywords that choose what is

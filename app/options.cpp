@@ -1,5 +1,7 @@
 #include "app/options.h"
 
+#include "io/environment_file.h"
+
 #include "io/load_scene.h"
 
 #include <cerrno>
@@ -30,6 +32,15 @@ void SceneOptions::add_to(CLI::App& cmd) {
     animation_option =
         cmd.add_option("--animation", animation,
                        "glTF: which of the file's animations --time and --frames play (default 0)");
+    cmd.add_option("--framing", framing,
+                   "A model without a camera of its own: frame it from the front (head-on down "
+                   "-Z, a glTF's default) or three-quarter (above and to the right, an OBJ's "
+                   "default)")
+        ->check(CLI::IsMember(all_names<ModelView>()));
+    cmd.add_option("--environment", environment,
+                   "What rays that leave the scene return: an equirectangular .hdr or .exr file "
+                   "(linear radiance), studio (built in: a neutral room with soft lights), or "
+                   "none (the background colour); default: the scene's own, else none");
     render.add_to(cmd);
 }
 
@@ -108,8 +119,17 @@ Scene SceneOptions::load() const {
     if (time_option->count() || animation_option->count() || animate) model.time = time;
     model.animation = animation;
     model.srgb = srgb;
+    if (!framing.empty()) model.view = from_name<ModelView>(framing);
     Scene loaded = preloaded ? *preloaded : load_scene_with_notes(scene_path(), model);
     render.apply(loaded);
+    if (environment == kNoEnvironment)
+        loaded.environment = nullptr;
+    else if (!environment.empty())
+        try { // a flag's value: bad usage, as --size's is
+            loaded.environment = load_environment(environment, fs::current_path(), "--environment");
+        } catch (const SceneError& e) {
+            throw UsageError(e.what());
+        }
     return loaded;
 }
 

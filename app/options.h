@@ -65,6 +65,8 @@ struct SceneOptions {
     // --time, to be played from T (default 0).
     bool animate = false;
     bool srgb = false; // `glint render --colour srgb`: ModelOptions::srgb
+    std::string framing;     // `--framing`: ModelOptions::view; empty: the format's default
+    std::string environment; // `--environment`: a file, studio or none; empty: the scene's
     RenderOptions render;
     // The scene read already (the Python module's glint.load): load() starts from a copy of it
     // instead of reading the file. The caller leaves it null where the options change what is

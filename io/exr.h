@@ -36,4 +36,12 @@ std::string encode_exr(const ExrLayers& layers);
 // encode_exr, written through write_file_atomically: `path` is untouched or complete.
 void write_exr(const std::filesystem::path& path, const ExrLayers& layers);
 
+// The RGB of the EXR file at `path`, width × height × 3 floats top row first (alpha dropped; a
+// luminance-only file as grey). Throws std::runtime_error with OpenEXR's reason.
+struct ExrRgb {
+    int width = 0, height = 0;
+    std::vector<float> rgb;
+};
+ExrRgb read_exr_rgb(const std::filesystem::path& path);
+
 } // namespace glint

@@ -1,6 +1,7 @@
-// The EXR encoder as a plug-in (glint_exr, io/CMakeLists.txt): OpenEXR's libraries load with it,
-// when a run first writes an EXR (io/exr.cpp opens it), not at every start. It reads glint's
-// ExrLayers and returns bytes or a message: no exception crosses the boundary.
+// The EXR encoder and decoder as a plug-in (glint_exr, io/CMakeLists.txt): OpenEXR's libraries
+// load with it, when a run first writes or reads an EXR (io/exr.cpp opens it), not at every
+// start. It reads glint's ExrLayers and returns bytes, or reads a file's RGB; or a message: no
+// exception crosses the boundary.
 #include "io/exr.h"
 
 #include <ImfChannelList.h>
@@ -8,6 +9,7 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfOutputFile.h>
+#include <ImfRgbaFile.h>
 #include <ImfStdIO.h>
 
 #include <stdexcept>
@@ -98,6 +100,38 @@ glint_encode_exr(const glint::ExrLayers* layers, std::string* out, std::string* 
         *error = e.what();
     } catch (...) {
         *error = "EXR: the encoder failed";
+    }
+    return false;
+}
+
+// The other entry: the RGB of the EXR file at `path` (its R, G and B, or its Y as grey; alpha
+// dropped) into `rgb`, width × height × 3 floats top row first, true; or false with the message.
+extern "C" __attribute__((visibility("default"))) bool
+glint_decode_exr(const char* path, int* width, int* height, std::vector<float>* rgb,
+                 std::string* error) noexcept {
+    try {
+        Imf::RgbaInputFile file(path);
+        const Imath::Box2i window = file.dataWindow();
+        const long w = window.max.x - window.min.x + 1, h = window.max.y - window.min.y + 1;
+        if (w < 1 || h < 1 || w > 65536 || h > 65536 || w * h > (1l << 28))
+            throw std::runtime_error("its data window is " + std::to_string(w) + "x" +
+                                     std::to_string(h) + " (at most 65536 a side, 2^28 pixels)");
+        std::vector<Imf::Rgba> pixels(static_cast<std::size_t>(w * h));
+        file.setFrameBuffer(pixels.data() - window.min.x - window.min.y * w, 1,
+                            static_cast<std::size_t>(w));
+        file.readPixels(window.min.y, window.max.y);
+        rgb->resize(pixels.size() * 3);
+        for (std::size_t i = 0; i < pixels.size(); ++i) {
+            (*rgb)[3 * i] = pixels[i].r;
+            (*rgb)[3 * i + 1] = pixels[i].g;
+            (*rgb)[3 * i + 2] = pixels[i].b;
+        }
+        *width = static_cast<int>(w), *height = static_cast<int>(h);
+        return true;
+    } catch (const std::exception& e) {
+        *error = e.what();
+    } catch (...) {
+        *error = "the decoder failed";
     }
     return false;
 }

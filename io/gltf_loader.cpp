@@ -20,6 +20,9 @@
 namespace glint {
 namespace {
 
+// A warning's reason is printed whole (DESIGN §14), however long the path in it.
+constexpr std::size_t kWhole = std::string::npos;
+
 // Objects a model may place (nodes × primitives): beyond, a small file would fill the memory.
 constexpr std::size_t kMaxModelObjects = std::size_t{1} << 22;
 
@@ -131,15 +134,17 @@ class Reader {
                                                                                : glm::dvec3(0));
             }
         }
-        if (attribute("TEXCOORD_0") >= 0) {
+        for (const auto& [key, uvs] :
+             {std::pair{"TEXCOORD_0", &mesh.uvs}, std::pair{"TEXCOORD_1", &mesh.uvs1}}) {
+            if (attribute(key) < 0) continue;
+            const std::string uv_at = at + "/attributes/" + key;
             const std::vector<double> uv = accessors_.read_accessor(
-                attribute("TEXCOORD_0"), TINYGLTF_TYPE_VEC2, 2,
+                attribute(key), TINYGLTF_TYPE_VEC2, 2,
                 {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
                  TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
-                at + "/attributes/TEXCOORD_0", n);
-            if (uv.size() != 2 * n)
-                fail(at + "/attributes/TEXCOORD_0", "has a count other than POSITION's");
-            for (std::size_t i = 0; i < n; ++i) mesh.uvs.emplace_back(uv[2 * i], uv[2 * i + 1]);
+                uv_at, n);
+            if (uv.size() != 2 * n) fail(uv_at, "has a count other than POSITION's");
+            for (std::size_t i = 0; i < n; ++i) uvs->emplace_back(uv[2 * i], uv[2 * i + 1]);
         }
         if (attribute("COLOR_0") >= 0) {
             // RGB or RGBA (the alpha is not used), float or normalized unsigned integers.
@@ -253,27 +258,33 @@ class Reader {
             it != g.extensions.end() && it->second.Has("ior"))
             ior = it->second.Get("ior").GetNumberAsDouble();
         Material out;
-        out.diffuse = glm::vec3(base * (1 - metallic) * (1 - transmission));
-        out.ambient = out.diffuse;
-        out.specular = glm::vec3(glm::mix(glm::dvec3(0.04), base, metallic));
-        const double alpha = roughness * roughness;
-        out.shininess = static_cast<float>(
-            alpha > 0 ? std::clamp(2 / (alpha * alpha) - 2, 1.0, 1e6) : 1e6);
-        out.reflectivity = static_cast<float>(metallic * (1 - roughness) * (1 - roughness));
+        MetalRoughInputs& p = out.metal_rough.emplace();
+        p.base = glm::vec3(base);
+        p.metallic = static_cast<float>(metallic);
+        p.roughness = static_cast<float>(roughness);
+        p.transmission = static_cast<float>(transmission);
         out.transmission = static_cast<float>(transmission);
         out.ior = static_cast<float>(ior);
+        out.double_sided = g.doubleSided;
         if (pbr.baseColorTexture.index >= 0)
             out.texture = texture(pbr.baseColorTexture, pbr_at + "/baseColorTexture", true);
-        if (pbr.metallicRoughnessTexture.index >= 0) unused("metallicRoughnessTexture", at);
+        if (pbr.metallicRoughnessTexture.index >= 0)
+            p.metal_rough_texture =
+                texture(pbr.metallicRoughnessTexture, pbr_at + "/metallicRoughnessTexture");
         if (g.normalTexture.index >= 0) {
             out.normal_texture = texture(g.normalTexture, at + "/normalTexture");
             if (!(std::abs(g.normalTexture.scale) <= 1e3))
                 fail(at + "/normalTexture/scale", "must be a number within ±1000");
             out.normal_scale = static_cast<float>(g.normalTexture.scale);
         }
-        if (g.occlusionTexture.index >= 0) unused("occlusionTexture", at);
+        if (g.occlusionTexture.index >= 0) {
+            p.occlusion_texture = texture(g.occlusionTexture, at + "/occlusionTexture");
+            p.occlusion_strength = static_cast<float>(
+                unit(g.occlusionTexture.strength, at + "/occlusionTexture/strength"));
+        }
         emission(g, at, out);
         alpha_mode(g, at, pbr_at, out);
+        phong_of_factors(out);
         for (const auto& [extension, value] : g.extensions)
             if (!kKnownExtensions.contains(extension))
                 unused("extension " + printable(extension), at);
@@ -283,6 +294,25 @@ class Reader {
                                                        : g.name);
         material_places_.push_back(at);
         return materials_.emplace(index, k).first->second;
+    }
+
+    // The Phong colours of a metallic-roughness material with every texel 1 (DESIGN §14's
+    // formulas on the factors alone): what the preview draws, and shading's inputs where the
+    // mesh has no texture coordinates.
+    static void phong_of_factors(Material& out) {
+        const MetalRoughInputs& p = *out.metal_rough;
+        const glm::dvec3 b(p.base);
+        const double m = p.metallic, r = p.roughness, t = p.transmission, keep = p.coverage;
+        const glm::dvec3 diffuse = b * ((1 - m) * (1 - t) * keep);
+        const glm::dvec3 specular = (glm::dvec3(0.04 * (1 - m)) + b * m) * keep;
+        const double reflectivity = m * (1 - r) * (1 - r) * keep;
+        out.diffuse = glm::vec3(diffuse);
+        out.specular = glm::vec3(specular);
+        out.reflectivity = static_cast<float>(reflectivity);
+        out.ambient = glm::vec3(diffuse + specular * (1 - reflectivity));
+        const double alpha = r * r;
+        out.shininess =
+            static_cast<float>(alpha > 0 ? std::clamp(2 / (alpha * alpha) - 2, 1.0, 1e6) : 1e6);
     }
 
     // Emission (DESIGN §13): emissiveFactor × emissiveStrength, times the emissive texture.
@@ -302,8 +332,12 @@ class Reader {
                 fail(at + "/emissiveFactor/" + std::to_string(c), "must be between 0 and 1");
             out.emission[c] = static_cast<float>(v * strength);
         }
-        if (g.emissiveTexture.index >= 0 && out.emission != glm::vec3(0.0f))
+        if (g.emissiveTexture.index >= 0 && out.emission != glm::vec3(0.0f)) {
             out.emission_texture = texture(g.emissiveTexture, at + "/emissiveTexture", true);
+            // An emissive texture that cannot be used leaves no emission (DESIGN §14): the
+            // factor alone would light the whole surface.
+            if (out.emission_texture == kNoTexture) out.emission = glm::vec3(0.0f);
+        }
     }
 
     // The base colour's alpha (docs/SCENES.md, "Cut-outs and blending"): MASK cuts out where it
@@ -325,8 +359,7 @@ class Reader {
                        "alpha blends)", at);
             // What shows of the surface is alpha of it; the rest passes straight through.
             const auto keep = static_cast<float>(a);
-            out.diffuse *= keep, out.ambient *= keep, out.specular *= keep;
-            out.reflectivity *= keep;
+            out.metal_rough->coverage = keep;
             out.transmission = 1 - keep * (1 - out.transmission);
             if (a < 1) out.ior = 1;
         } else if (g.alphaMode != "OPAQUE") {
@@ -381,10 +414,6 @@ class Reader {
             fail(at + "/index", "no texture " + std::to_string(info.index));
         int tex_coord = info.texCoord;
         const glm::mat3 transform = uv_transform(info.extensions, at, tex_coord);
-        if (tex_coord != 0) {
-            unused("texCoord " + std::to_string(tex_coord) + " (glint reads TEXCOORD_0)", at);
-            return kNoTexture;
-        }
         const tinygltf::Texture& t = m_.textures[static_cast<std::size_t>(info.index)];
         const std::string texture_at = pointer("textures", static_cast<std::size_t>(info.index));
         if (t.source < 0) {
@@ -393,6 +422,13 @@ class Reader {
         }
         if (static_cast<std::size_t>(t.source) >= m_.images.size())
             fail(texture_at + "/source", "no image " + std::to_string(t.source));
+        if (tex_coord != 0 && tex_coord != 1) {
+            scene_.warnings.push_back(name_ + ": " + at + ": texture not used: image '" +
+                                      printable(image_label(t.source), kWhole) +
+                                      "' is read through TEXCOORD_" + std::to_string(tex_coord) +
+                                      ", and glint reads TEXCOORD_0 and TEXCOORD_1");
+            return kNoTexture;
+        }
         Texture out;
         if (t.sampler >= 0) {
             if (static_cast<std::size_t>(t.sampler) >= m_.samplers.size())
@@ -405,6 +441,7 @@ class Reader {
         out.image = image(t.source);
         out.uv_transform = transform;
         out.srgb = colour && options_.srgb;
+        out.set = tex_coord;
         if (!out.image) return kNoTexture;
         scene_.textures.push_back(out);
         return static_cast<std::uint32_t>(scene_.textures.size() - 1);
@@ -419,13 +456,18 @@ class Reader {
         }
     }
 
+    // How messages name image `index`: its URI (decoded), else its name or number.
+    std::string image_label(int index) const {
+        const tinygltf::Image& g = m_.images[static_cast<std::size_t>(index)];
+        if (!g.uri.empty() && !is_data_uri(g.uri)) return decode_uri(g.uri);
+        return g.name.empty() ? "image " + std::to_string(index) : g.name;
+    }
+
     std::shared_ptr<const TextureImage> image(int index) {
         if (const auto it = images_.find(index); it != images_.end()) return it->second;
         const tinygltf::Image& g = m_.images[static_cast<std::size_t>(index)];
         const std::string at = pointer("images", static_cast<std::size_t>(index));
-        const std::string label = g.uri.empty() || is_data_uri(g.uri)
-                                      ? (g.name.empty() ? "image " + std::to_string(index) : g.name)
-                                      : decode_uri(g.uri);
+        const std::string label = image_label(index);
         std::string why;
         std::optional<TextureImage> decoded;
         if (!g.image.empty()) {
@@ -434,7 +476,7 @@ class Reader {
             if (const std::optional<std::string> bytes = files_(decode_uri(g.uri), why))
                 decoded = decode_texture(*bytes, label, why);
             else
-                why = "cannot read '" + printable(label) + "': " + why;
+                why = "cannot read '" + printable(label, kWhole) + "': " + why;
         } else {
             why = "it holds no image";
         }
@@ -442,7 +484,8 @@ class Reader {
         if (decoded)
             out = std::make_shared<const TextureImage>(std::move(*decoded));
         else
-            scene_.warnings.push_back(name_ + ": " + at + ": texture not used: " + printable(why));
+            scene_.warnings.push_back(name_ + ": " + at +
+                                      ": texture not used: " + printable(why, kWhole));
         return images_.emplace(index, out).first->second;
     }
 
@@ -524,11 +567,13 @@ class Reader {
         struct Frame {
             std::size_t node;
             DMat4 world;
+            DMat4 rest; // the world matrix without the animation: the nodes as the file places them
             std::size_t next_child = 0;
         };
         const auto failing = [this](const std::string& at, const std::string& what) { fail(at, what); };
         const auto enter = [&](int node, const std::string& at, const DMat4& parent,
-                               std::vector<Frame>& stack, const std::string& parent_node) {
+                               const DMat4& parent_rest, std::vector<Frame>& stack,
+                               const std::string& parent_node) {
             if (node < 0 || static_cast<std::size_t>(node) >= m_.nodes.size())
                 fail(at, "no node " + std::to_string(node));
             const auto k = static_cast<std::size_t>(node);
@@ -540,6 +585,7 @@ class Reader {
                                                           "at most one parent)");
             state[k] = open;
             DMat4 local = local_matrix(m_.nodes[k], pointer("nodes", k), failing);
+            const DMat4 rest = parent_rest * local;
             if (motion_) {
                 GltfMotion::Node& n = motion_->nodes[k];
                 n.has_matrix = m_.nodes[k].matrix.size() == 16;
@@ -550,13 +596,14 @@ class Reader {
                 if (motion_->moves(k)) local = motion_->local(k, *options_.time);
             }
             const DMat4 world = parent * local;
-            place(k, world);
-            stack.push_back({k, world});
+            place(k, world, rest);
+            stack.push_back({k, world, rest});
         };
         for (std::size_t r = 0; r < roots.size(); ++r) {
             if (motion_ && roots[r] >= 0) motion_->roots.push_back(static_cast<std::size_t>(roots[r]));
             std::vector<Frame> stack;
-            enter(roots[r], roots_at + "/" + std::to_string(r), DMat4(1.0), stack, "the scene");
+            enter(roots[r], roots_at + "/" + std::to_string(r), DMat4(1.0), DMat4(1.0), stack,
+                  "the scene");
             while (!stack.empty()) {
                 Frame& top = stack.back();
                 const tinygltf::Node& n = m_.nodes[top.node];
@@ -566,16 +613,17 @@ class Reader {
                     continue;
                 }
                 const std::size_t j = top.next_child++;
-                const DMat4 world = top.world; // `top` moves when the stack grows
+                const DMat4 world = top.world, rest = top.rest; // `top` moves as the stack grows
                 const std::string parent = "node " + std::to_string(top.node);
                 enter(n.children[j], pointer("nodes", top.node) + "/children/" + std::to_string(j),
-                      world, stack, parent);
+                      world, rest, stack, parent);
             }
         }
     }
 
-    // What node k places: its mesh's primitives as objects, its camera, its light.
-    void place(std::size_t k, const DMat4& world) {
+    // What node k places: its mesh's primitives as objects, its camera, its light. `rest`: its
+    // world matrix without the animation.
+    void place(std::size_t k, const DMat4& world, const DMat4& rest) {
         const tinygltf::Node& n = m_.nodes[k];
         const std::string at = pointer("nodes", k);
         if (n.mesh >= 0) {
@@ -591,6 +639,7 @@ class Reader {
                 o.material = material;
                 o.transform = world;
                 scene_.objects.push_back(o);
+                rest_transforms_.push_back(rest);
                 if (motion_) motion_->object_nodes.push_back(k);
                 scene_.object_names.push_back(printable(n.name.empty() ? mesh_name : n.name));
                 object_places_.push_back(at);
@@ -638,7 +687,7 @@ class Reader {
             }
         }
         if (!chosen) {
-            frame_model(scene_);
+            frame_model(scene_, options_.view.value_or(ModelView::front));
             camera_place_ = "the framing camera";
             return;
         }
@@ -688,7 +737,13 @@ class Reader {
             light_places_.push_back(at);
         }
         if (lights_.empty()) {
-            light_model(scene_);
+            // From the model's centre as the file places it, before any animation: a sequence's
+            // frames and `--time` alone light the model alike.
+            std::vector<SceneObject> at_rest = scene_.objects;
+            for (std::size_t i = 0; i < at_rest.size(); ++i)
+                at_rest[i].transform = rest_transforms_[i];
+            const std::optional<ModelSphere> sphere = model_sphere(at_rest, scene_.meshes);
+            light_model(scene_, sphere ? std::optional(sphere->centre) : std::nullopt);
             light_places_.assign(scene_.lights.size(), "the default lights");
         }
     }
@@ -747,6 +802,7 @@ class Reader {
     std::map<std::string, std::string> unused_;
     std::vector<std::string> material_places_, object_places_, light_places_;
     std::vector<MeshPlace> mesh_places_;
+    std::vector<DMat4> rest_transforms_; // each object's world matrix without the animation
     std::shared_ptr<GltfMotion> motion_; // the animation asked for (options_.time), or none
     std::string camera_place_, camera_place_node_;
 };

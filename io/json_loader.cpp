@@ -1,5 +1,6 @@
 #include "io/json_loader.h"
 
+#include "io/environment_file.h"
 #include "io/read_text.h"
 
 #include "io/obj_loader.h"
@@ -77,13 +78,20 @@ class Loader {
     Scene load(const json& root) {
         root_ = &root;
         const Node top{root, ""};
-        expect_object(top, {"description", "camera", "background", "ambient", "lights", "materials",
-                            "objects", "render"});
+        expect_object(top, {"description", "camera", "background", "ambient", "environment",
+                            "lights", "materials", "objects", "render"});
         Scene scene;
         if (has(top, "description")) string(top.child("description"));
         if (has(top, "camera")) scene.camera = camera(top.child("camera"));
         if (has(top, "background")) scene.background = colour(top.child("background"));
         if (has(top, "ambient")) scene.ambient = colour(top.child("ambient"));
+        if (has(top, "environment")) { // DESIGN §14: a file beside the scene, or the studio
+            const Node node = top.child("environment");
+            const std::string spec = string(node);
+            if (spec != kNoEnvironment)
+                scene.environment = load_environment(
+                    spec, std::filesystem::path(file_).parent_path(), file_ + ": " + node.path);
+        }
         if (has(top, "lights")) {
             const Node lights = array(top.child("lights"));
             for (std::size_t i = 0; i < lights.value.size(); ++i)

@@ -11,16 +11,15 @@
 
 namespace glint {
 
-void frame_model(Scene& scene) {
-    // The world box's centre, and the farthest placed mesh vertex from it (or, for other shapes,
-    // the farthest corner of their placed box): the bounding sphere about the box's centre.
+std::optional<ModelSphere> model_sphere(const std::vector<SceneObject>& objects,
+                                        const std::vector<TriangleMesh>& meshes) {
     DVec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
     const auto each_point = [&](const auto& visit) {
-        for (const SceneObject& o : scene.objects) {
+        for (const SceneObject& o : objects) {
             if (o.shape == ShapeKind::mesh || o.shape == ShapeKind::triangle) {
-                for (const glm::vec3& v : scene.meshes[o.mesh].vertices)
+                for (const glm::vec3& v : meshes[o.mesh].vertices)
                     visit(DVec3(o.transform * glm::dvec4(DVec3(v), 1.0)));
-            } else if (const std::optional<ObjectBox> box = unit_box(o, scene.meshes)) {
+            } else if (const std::optional<ObjectBox> box = unit_box(o, meshes)) {
                 const auto [a, b] = transformed_box(*box, o.transform);
                 for (int k = 0; k < 8; ++k)
                     visit(DVec3(k & 1 ? b.x : a.x, k & 2 ? b.y : a.y, k & 4 ? b.z : a.z));
@@ -28,10 +27,18 @@ void frame_model(Scene& scene) {
         }
     };
     each_point([&](DVec3 p) { lo = glm::min(lo, p), hi = glm::max(hi, p); });
-    if (!(lo.x <= hi.x)) return;
+    if (!(lo.x <= hi.x)) return std::nullopt;
     const DVec3 centre = 0.5 * (lo + hi);
     double radius = 0;
     each_point([&](DVec3 p) { radius = std::max(radius, glm::length(p - centre)); });
+    return ModelSphere{centre, radius};
+}
+
+void frame_model(Scene& scene, ModelView view) {
+    const std::optional<ModelSphere> sphere = model_sphere(scene);
+    if (!sphere) return;
+    const DVec3 centre = sphere->centre;
+    double radius = sphere->radius;
     // A model that is one point still gets a distance.
     if (!(radius > 0)) radius = std::max(1.0, glm::length(centre)) * 1e-3;
     Camera& c = scene.camera;
@@ -41,18 +48,31 @@ void frame_model(Scene& scene) {
     const double half = std::min(half_x, half_y) * kFramingFill;
     const double distance = radius / std::sin(half);
     c.look_at = centre;
-    c.eye = centre + distance * glm::normalize(kFramingDirection);
+    c.eye = centre + distance * glm::normalize(view == ModelView::front ? kFrontDirection
+                                                                        : kFramingDirection);
     c.up = {0.0, 1.0, 0.0};
 }
 
-void light_model(Scene& scene) {
+void light_model(Scene& scene, std::optional<DVec3> model_centre) {
     const Camera& c = scene.camera;
-    const DVec3 back = c.eye - c.look_at; // from the model towards the eye
-    const DVec3 right = glm::normalize(glm::cross(c.up, back));
+    // From the model's centre (a framing camera's look-at point; a file camera's may be anywhere
+    // along its view); without a bounded object, from the look-at point.
+    if (!model_centre)
+        if (const std::optional<ModelSphere> sphere = model_sphere(scene))
+            model_centre = sphere->centre;
+    const DVec3 centre = model_centre.value_or(c.look_at);
+    DVec3 back = c.eye - centre; // from the model towards the eye
+    // An eye at the centre: the key light stands off behind the eye, one look-at distance back.
+    if (!(glm::length(back) > 0)) back = c.eye - c.look_at;
+    DVec3 right = glm::cross(c.up, back);
+    if (!(glm::length(right) > 0)) right = glm::cross(DVec3(0, 0, 1), back); // looking along up
+    if (!(glm::length(right) > 0)) right = DVec3(1, 0, 0);
+    right = glm::normalize(right);
     const DVec3 up = glm::normalize(glm::cross(back, right));
     const double d = glm::length(back);
-    // The key light from the upper left, twice as far as the eye; the fill light at the eye.
-    scene.lights.push_back({c.look_at + back + d * (0.8 * up - 0.6 * right), glm::vec3(0.7f)});
+    // The key light from the upper left, √2 times as far from the centre as the eye; the fill
+    // light at the eye.
+    scene.lights.push_back({centre + back + d * (0.8 * up - 0.6 * right), glm::vec3(0.7f)});
     scene.lights.push_back({c.eye, glm::vec3(0.2f)});
     scene.ambient = glm::vec3(0.1f);
 }
@@ -81,7 +101,7 @@ Scene obj_scene(const std::filesystem::path& path, const ModelOptions& options) 
     }
     scene.notes = std::move(model.notes);
     scene.warnings = std::move(model.warnings);
-    frame_model(scene);
+    frame_model(scene, options.view.value_or(ModelView::three_quarter));
     light_model(scene);
     const std::string name = path.string();
     check_scene(scene, [&](const std::string& part) {

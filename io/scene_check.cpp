@@ -116,13 +116,17 @@ class Check {
             fail(path + "/normals", "has " + std::to_string(mesh.normals.size()) +
                                         " normals for " + std::to_string(mesh.vertices.size()) +
                                         " vertices");
-        if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.vertices.size())
-            fail(path + "/uvs", "has " + std::to_string(mesh.uvs.size()) +
-                                    " texture coordinates for " +
-                                    std::to_string(mesh.vertices.size()) + " vertices");
-        for (std::size_t v = 0; v < mesh.uvs.size(); ++v)
-            if (!std::isfinite(mesh.uvs[v].x) || !std::isfinite(mesh.uvs[v].y))
-                fail(path + "/uvs/" + std::to_string(v), "texture coordinates must be finite");
+        for (const auto& [key, uvs] :
+             {std::pair{"/uvs", &mesh.uvs}, std::pair{"/uvs1", &mesh.uvs1}}) {
+            if (!uvs->empty() && uvs->size() != mesh.vertices.size())
+                fail(path + key, "has " + std::to_string(uvs->size()) +
+                                     " texture coordinates for " +
+                                     std::to_string(mesh.vertices.size()) + " vertices");
+            for (std::size_t v = 0; v < uvs->size(); ++v)
+                if (!std::isfinite((*uvs)[v].x) || !std::isfinite((*uvs)[v].y))
+                    fail(path + key + "/" + std::to_string(v),
+                         "texture coordinates must be finite");
+        }
     }
 
     void object(const std::string& path, const SceneObject& o, const Scene& scene) const {

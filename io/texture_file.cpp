@@ -67,7 +67,7 @@ std::optional<TextureImage> load_texture(const std::filesystem::path& path, cons
     } catch (const SceneError& e) {
         why = e.what();
     }
-    warnings.push_back(from + ": texture not used: " + printable(why));
+    warnings.push_back(from + ": texture not used: " + printable(why, std::string::npos));
     return std::nullopt;
 }
 

@@ -26,7 +26,7 @@ glm::dvec3 ray_radiance_bound(const Scene& scene) {
             return ambient * glm::dvec3(scene.ambient) + glm::dvec3(m.emission) +
                    light_sum * (diffuse + specular);
         };
-        if (const std::optional<Material::MetalRough>& p = m.metal_rough) {
+        if (const std::optional<MetalRoughInputs>& p = m.metal_rough) {
             // Per texel (DESIGN §14), with texels at most 1: k_d at most b(1 − t) (no metal),
             // k_s the larger of 0.04 and b, the reflectivity the metallic factor's, k_a their sum.
             const glm::dvec3 b(p->base);

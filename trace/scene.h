@@ -92,6 +92,21 @@ struct Texture {
 
 inline constexpr std::uint32_t kNoTexture = ~std::uint32_t{0};
 
+// What a glTF metallic-roughness material gives per texel (DESIGN §14): its factors and the
+// textures that scale them (Material::metal_rough). At namespace scope: clang cannot construct
+// a nested class with member initializers inside std::optional of its enclosing class.
+struct MetalRoughInputs {
+    glm::vec3 base{1.0f};  // baseColorFactor's RGB
+    float metallic = 1.0f; // metallicFactor
+    float roughness = 1.0f;
+    float transmission = 0.0f;
+    float occlusion_strength = 1.0f;
+    // alphaMode BLEND: what shows of the surface (the factor's alpha); 1 elsewhere.
+    float coverage = 1.0f;
+    std::uint32_t metal_rough_texture = kNoTexture; // metallic in blue, roughness in green
+    std::uint32_t occlusion_texture = kNoTexture;   // in red
+};
+
 struct Material {
     glm::vec3 ambient{0.8f};
     glm::vec3 diffuse{0.8f};
@@ -122,19 +137,8 @@ struct Material {
     // winding faces away from the ray is no hit. JSON, OBJ and NFF materials are two-sided.
     bool double_sided = true;
     // A glTF metallic-roughness material (DESIGN §14): shading derives the Phong colours above
-    // from these per texel. The fields above hold them with every texel 1 (the preview's colour).
-    struct MetalRough {
-        glm::vec3 base{1.0f};  // baseColorFactor's RGB
-        float metallic = 1.0f; // metallicFactor
-        float roughness = 1.0f;
-        float transmission = 0.0f;
-        float occlusion_strength = 1.0f;
-        // alphaMode BLEND: what shows of the surface (the factor's alpha); 1 elsewhere.
-        float coverage = 1.0f;
-        std::uint32_t metal_rough_texture = kNoTexture; // metallic in blue, roughness in green
-        std::uint32_t occlusion_texture = kNoTexture;   // in red
-    };
-    std::optional<MetalRough> metal_rough;
+    // from it per texel. The fields above hold them with every texel 1 (the preview's colour).
+    std::optional<MetalRoughInputs> metal_rough;
 };
 
 // Triangles as given (counter-clockwise front), object space.

@@ -49,7 +49,7 @@ SceneGeometry::SceneGeometry(const Scene& scene) : textures(scene.textures) {
                              texture(m.alpha_texture != kNoTexture ? m.alpha_texture : m.texture),
                              m.alpha, m.alpha_cutoff, !m.double_sided};
         std::optional<Phong::MetalRough> metal_rough;
-        if (const std::optional<Material::MetalRough>& p = m.metal_rough)
+        if (const std::optional<MetalRoughInputs>& p = m.metal_rough)
             metal_rough = Phong::MetalRough{Vec3(p->base),
                                             p->metallic,
                                             p->roughness,
