@@ -79,5 +79,28 @@ int main(int argc, char** argv) {
            {{"sampler", 2}, {"target", {{"node", 0}, {"path", "scale"}}}}}}}};
     std::ofstream(dir / "moving.gltf", std::ios::binary) << moving.gltf();
     std::ofstream(dir / "moving.glb", std::ios::binary) << moving.glb();
+    // DESIGN §14: metallic-roughness and occlusion textures read per texel, a texture through
+    // TEXCOORD_1 with its transform, one-sided faces under a negative scale, an emissive texture
+    // through a set the mesh has.
+    GltfBuilder texels;
+    const int maps = texels.texture(glint::encode_png(image));
+    nlohmann::json on_second = {{"index", maps}, {"texCoord", 1}};
+    on_second["extensions"]["KHR_texture_transform"] = {{"offset", {0.5, 0}}, {"texCoord", 1}};
+    texels.doc["materials"].push_back(
+        {{"pbrMetallicRoughness",
+          {{"baseColorTexture", on_second}, {"metallicRoughnessTexture", {{"index", maps}}}}},
+         {"occlusionTexture", {{"index", maps}, {"strength", 0.5}}},
+         {"emissiveFactor", {0.2, 0.2, 0.2}},
+         {"emissiveTexture", {{"index", maps}, {"texCoord", 1}}},
+         {"doubleSided", false}});
+    const int panel = texels.mesh({-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0}, {0, 1, 2, 0, 2, 3}, 0,
+                                  {0, 1, 1, 1, 1, 0, 0, 0});
+    texels.doc["meshes"][panel]["primitives"][0]["attributes"]["TEXCOORD_1"] =
+        texels.floats({0, 0, 1, 0, 1, 1, 0, 1}, "VEC2", 2);
+    texels.node({{"mesh", panel}});
+    texels.node({{"mesh", panel}, {"scale", {-1, 1, 1}}, {"translation", {2.5, 0, 0}}});
+    texels.doc["extensionsUsed"] = {"KHR_texture_transform"};
+    std::ofstream(dir / "texels.gltf", std::ios::binary) << texels.gltf();
+    std::ofstream(dir / "texels.glb", std::ios::binary) << texels.glb();
     return 0;
 }

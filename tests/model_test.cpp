@@ -262,7 +262,7 @@ TEST(Model, AMissingTextureAndUnusedFeaturesAreWarnings) {
     b.doc["images"].push_back({{"uri", "missing.png"}});
     b.doc["textures"].push_back({{"source", 0}});
     b.doc["materials"].push_back({{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
-                                  {"occlusionTexture", {{"index", 0}}}});
+                                  {"extensions", {{"KHR_materials_sheen", json::object()}}}});
     b.node({{"mesh", b.mesh({0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 2}, 0, {0, 0, 1, 0, 0, 1})}});
     write(dir / "m.gltf", b.gltf());
     const Outcome r = glint(dir, "render m.gltf --size 32x24 -o m.png");
@@ -271,7 +271,8 @@ TEST(Model, AMissingTextureAndUnusedFeaturesAreWarnings) {
                          "'missing.png'"),
               std::string::npos)
         << r.err;
-    EXPECT_NE(r.err.find("occlusionTexture (/materials/0)"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("extension KHR_materials_sheen (/materials/0)"), std::string::npos)
+        << r.err;
 }
 
 // Bad input: each case exits 2 naming the file and the place, and writes nothing.

@@ -11,6 +11,8 @@ BAD = {
     "size": ((0, 5), "each side must be 1 to 16384"),
     "time": (-1.0, "must be 0 or more seconds"),
     "animation": (-2, "must be 0 or more"),
+    "framing": ("sideways", "sideways not in"),
+    "environment": ("sky.png", "an environment is an equirectangular .hdr or .exr file"),
     "accel": ("octree", "octree not in"),
     "max_depth": (65, "not in range 0 to 64"),
     "min_reflectivity": (1.5, "Value 1.5 not in range"),
