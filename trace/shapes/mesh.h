@@ -73,9 +73,6 @@ inline std::vector<Bounds> triangle_bounds(const Mesh& mesh) {
 struct TriangleHit {
     Real t = kInfinity;
     Real u = 0, v = 0; // barycentric weights of vertices 1 and 2
-    // The ray meets the triangle's counter-clockwise side: its winding normal, (p1 − p0) ×
-    // (p2 − p0), points back along the ray (the edge functions' sum is positive).
-    bool ccw = false;
 };
 
 // A ray prepared for the watertight test (Woop, Benthin & Wald, JCGT 2013): the axis of its
@@ -114,7 +111,7 @@ inline TriangleHit intersect_triangle(Vec3 p0, Vec3 p1, Vec3 p2, const Watertigh
     const Real det = u + v + w;
     if (det == 0) return {};
     const Real t = (u * r.sz * a[r.kz] + v * r.sz * b[r.kz] + w * r.sz * c[r.kz]) / det;
-    return {t, v / det, w / det, det > 0};
+    return {t, v / det, w / det};
 }
 
 inline TriangleHit intersect_triangle(Vec3 p0, Vec3 p1, Vec3 p2, const Ray& ray) {
@@ -162,7 +159,6 @@ intersect_triangles(const TriangleBlock& block, std::uint32_t lanes, const Water
     const unsigned edges = static_cast<unsigned>(_mm_movemask_ps(on_edge)) & all;
     const unsigned crossed = ~static_cast<unsigned>(_mm_movemask_ps(missed)) & all & ~edges;
     if ((crossed | edges) == 0) return 0;
-    const auto ccw = static_cast<unsigned>(_mm_movemask_ps(_mm_cmpgt_ps(det, zero)));
     const __m128 sz = _mm_set1_ps(r.sz);
     const __m128 t = _mm_div_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(u, sz), z[0]),
                                                       _mm_mul_ps(_mm_mul_ps(v, sz), z[1])),
@@ -179,7 +175,7 @@ intersect_triangles(const TriangleBlock& block, std::uint32_t lanes, const Water
             hits[i] =
                 intersect_triangle(block.corner(0, i), block.corner(1, i), block.corner(2, i), r);
         else if ((crossed >> i) & 1)
-            hits[i] = {t_out[i], b1[i], b2[i], ((ccw >> i) & 1) != 0};
+            hits[i] = {t_out[i], b1[i], b2[i]};
     return crossed | edges;
 #else
     unsigned may_hit = 0;
@@ -261,10 +257,22 @@ inline bool cut_away(const Mesh& mesh, const CutOut& cut, std::uint32_t triangle
     return cut.cuts && cut_out_alpha(mesh, cut, triangle, u, v) < cut.cutoff;
 }
 
+// Whether the ray `r` was prepared from meets triangle `triangle` from behind: its winding
+// normal (p1 − p0) × (p2 − p0) does not point back along the ray. The direction is the one the
+// preparation divided out (d[kz] = 1/sz, d[kx] = sx/sz, d[ky] = sy/sz: up to its length), so
+// only one-sided meshes' hits pay for it, not every triangle test.
+inline bool seen_from_behind(const Mesh& mesh, std::uint32_t triangle, const WatertightRay& r) {
+    const glm::uvec3 t = mesh.triangles[triangle];
+    const Vec3 &p0 = mesh.vertices[t.x], &p1 = mesh.vertices[t.y], &p2 = mesh.vertices[t.z];
+    Vec3 d;
+    d[r.kz] = 1 / r.sz, d[r.kx] = r.sx / r.sz, d[r.ky] = r.sy / r.sz;
+    return glm::dot(glm::cross(p1 - p0, p2 - p0), d) >= 0;
+}
+
 // Whether `cut` makes a hit there no hit: a one-sided triangle seen from behind, or cut away.
 inline bool filtered_away(const Mesh& mesh, const CutOut& cut, std::uint32_t triangle,
-                          const TriangleHit& h) {
-    if (cut.one_sided && !h.ccw) return true;
+                          const TriangleHit& h, const WatertightRay& r) {
+    if (cut.one_sided && seen_from_behind(mesh, triangle, r)) return true;
     return cut_away(mesh, cut, triangle, h.u, h.v);
 }
 
@@ -289,7 +297,7 @@ consider_triangles(const Mesh& mesh, std::uint32_t begin, std::uint32_t end,
             const std::uint32_t triangle = block.triangle[i];
             if (h.t > 0 && h.t < t_max &&
                 (h.t < best.t || (h.t == best.t && triangle < best.part)) &&
-                !(cut && filtered_away(mesh, *cut, triangle, h)))
+                !(cut && filtered_away(mesh, *cut, triangle, h, ray)))
                 best = {h.t, triangle, h.u, h.v};
         }
     }
