@@ -107,17 +107,23 @@ Real light_through(const World& world, const SurfacePoint& surface, Vec3 light, 
 
 } // namespace
 
-SurfaceColours surface_colours(const World& world, const Hit& hit, const SurfacePoint& surface) {
+namespace {
+
+// surface_colours, inlined into shade(): most hits take its first return.
+[[gnu::always_inline]] inline SurfaceColours colours_at(const World& world, const Hit& hit,
+                                                        const SurfacePoint& surface) {
     const Phong& m = world.material(hit.object);
     SurfaceColours out{m.ambient, m.diffuse, m.specular, m.shininess, m.reflectivity, false, {}};
     out.odd_cell = m.checker_size > 0 &&
                    odd_cell(m.checker_size, surface.object_point,
                             shape_traits(world.objects()[hit.object].shape).checker_in_plane);
     if (out.odd_cell) out.diffuse = m.checker_diffuse, out.ambient = m.checker_ambient;
-    // The base colour: the material's (or its checker cell's) × texel × vertex colour.
+    // The base colour: the material's (or its checker cell's) × texel × vertex colour; most
+    // surfaces have neither, and skip the products.
     Vec3 base(1.0_r);
+    bool tinted = false;
     out.texel = texture_at(world, m.texture, hit);
-    if (out.texel) base *= Vec3(out.texel->colour);
+    if (out.texel) base = Vec3(out.texel->colour), tinted = true;
     // A mesh's vertex colours multiply the base colour too (glTF's COLOR_0).
     if (const Mesh* mesh = world.objects()[hit.object].params.mesh;
         mesh && !mesh->colours.empty()) {
@@ -125,10 +131,10 @@ SurfaceColours surface_colours(const World& world, const Hit& hit, const Surface
         const Real b1 = hit.u, b2 = hit.v, b0 = 1 - b1 - b2;
         base *= b0 * Vec3(mesh->colours[tri.x]) + b1 * Vec3(mesh->colours[tri.y]) +
                 b2 * Vec3(mesh->colours[tri.z]);
+        tinted = true;
     }
     if (!m.metal_rough) {
-        out.diffuse *= base;
-        out.ambient *= base;
+        if (tinted) out.diffuse *= base, out.ambient *= base;
         return out;
     }
     // DESIGN §14, per texel; BLEND's coverage scales what shows of the surface.
@@ -147,6 +153,12 @@ SurfaceColours surface_colours(const World& world, const Hit& hit, const Surface
     return out;
 }
 
+} // namespace
+
+SurfaceColours surface_colours(const World& world, const Hit& hit, const SurfacePoint& surface) {
+    return colours_at(world, hit, surface);
+}
+
 Real reflectivity_at(const World& world, const Hit& hit) {
     const Phong& m = world.material(hit.object);
     if (!m.metal_rough) return m.reflectivity;
@@ -163,7 +175,7 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoin
     const Phong& m = world.material(hit.object);
     const Vec3 n = surface.shading;
     const Vec3 v = -glm::normalize(ray.direction);
-    const SurfaceColours colours = surface_colours(world, hit, surface);
+    const SurfaceColours colours = colours_at(world, hit, surface);
     const Vec3 &diffuse = colours.diffuse, &ambient = colours.ambient, &specular = colours.specular;
     const bool odd = colours.odd_cell;
     const std::optional<TexelSample>& texel = colours.texel;
