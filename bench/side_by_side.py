@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Two glint binaries (or two sets of flags) rendering the same scenes, alternated run by run, so
-that both meet the same machine conditions; prints each phase's median and the new/old ratio.
-Machines here are shared and noisy: a ratio of medians over alternated runs is the figure to
-quote, not either time alone.
+that both meet the same machine conditions; prints each phase's median, the new/old ratio of the
+medians, and the spread of the run-by-run ratios (each new run over the old run beside it: the
+smallest and the largest). Machines here are shared and noisy: a ratio of medians over alternated
+runs, with its spread, is the figure to quote, not either time alone.
 
     python3 bench/side_by_side.py OLD_GLINT NEW_GLINT SCENE... [--runs 5] [--flags "--mode ray"]
     python3 bench/side_by_side.py build/app/glint build/app/glint balls-4.nff \\
@@ -38,8 +39,8 @@ def main():
     parser.add_argument("--new-flags", default="", help="for the new one only")
     args = parser.parse_args()
     common = shlex.split(args.flags)
-    print(f"| scene | phase | old median (s) | new median (s) | new / old |")
-    print(f"|---|---|---:|---:|---:|")
+    print(f"| scene | phase | old median (s) | new median (s) | new / old | run ratios (min–max) |")
+    print(f"|---|---|---:|---:|---:|---:|")
     with tempfile.TemporaryDirectory() as out_dir:
         for scene in args.scenes:
             runs = {"old": [], "new": []}
@@ -50,7 +51,10 @@ def main():
             for phase in PHASES:
                 old = statistics.median(r[phase] for r in runs["old"])
                 new = statistics.median(r[phase] for r in runs["new"])
-                print(f"| {name} | {phase} | {old:.3f} | {new:.3f} | {new / old:.2f} |", flush=True)
+                ratios = [n[phase] / o[phase] for o, n in zip(runs["old"], runs["new"]) if o[phase] > 0]
+                spread = f"{min(ratios):.2f}–{max(ratios):.2f}" if ratios else "n/a"
+                print(f"| {name} | {phase} | {old:.3f} | {new:.3f} | {new / old:.2f} | {spread} |",
+                      flush=True)
 
 
 if __name__ == "__main__":
