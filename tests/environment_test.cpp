@@ -26,7 +26,8 @@ namespace fs = std::filesystem;
 // and (0, 2, 0) (mantissa m and exponent e stand for m · 2^(e − 136)).
 std::string two_texel_hdr() {
     std::string out = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 2\n";
-    for (const unsigned char byte : {128, 64, 32, 129, 0, 128, 0, 130}) out += static_cast<char>(byte);
+    for (const unsigned char byte : {128, 64, 32, 129, 0, 128, 0, 130})
+        out += static_cast<char>(byte);
     return out;
 }
 
@@ -113,6 +114,23 @@ TEST(Environment, TheFlagOverridesTheSceneAndABadFileExitsTwoWritingNothing) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(testing::slurp(dir / "sky.png"), testing::slurp(dir / "plain.png"));
     EXPECT_EQ(testing::slurp(dir / "none.png"), testing::slurp(dir / "plain.png"));
+}
+
+// explain names what a ray that left the scene returned: the environment (its radiance in the
+// JSON, its name in the text), where the background stood before.
+TEST(Environment, ExplainNamesItForARayThatLeaves) {
+    const fs::path dir = fresh_dir("glint_environment");
+    write(dir / "one.json",
+          R"({"camera": {"width": 16, "height": 12}, "objects": [{"shape": "sphere"}]})");
+    Outcome r = glint(dir, "explain one.json 0 0 --environment studio --json e.json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("leaves the scene into the environment (studio)"), std::string::npos)
+        << r.out;
+    EXPECT_NE(testing::slurp(dir / "e.json").find("\"environment\""), std::string::npos);
+    r = glint(dir, "explain one.json 0 0 --json b.json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("hits nothing: the background"), std::string::npos) << r.out;
+    EXPECT_EQ(testing::slurp(dir / "b.json").find("\"environment\""), std::string::npos);
 }
 
 } // namespace
