@@ -56,6 +56,7 @@ std::shared_ptr<const Environment> studio_environment() {
                 radiance += 1.5 * panel(azimuth, elevation, 0, 1.35, pi, 0.2);
                 float* p = &studio->rgb[(static_cast<std::size_t>(j) * studio->width + i) * 3];
                 p[0] = p[1] = p[2] = static_cast<float>(radiance);
+                studio->brightest = glm::max(studio->brightest, glm::vec3(p[0]));
             }
         return std::shared_ptr<const Environment>(std::move(studio));
     }();
@@ -101,13 +102,16 @@ std::shared_ptr<const Environment> load_environment(const std::string& spec,
                          kStudioEnvironment + "'");
     }
     if (out->width < 1 || out->height < 1) throw SceneError(named + ": the image has no pixels");
-    for (std::size_t i = 0; i < out->rgb.size(); ++i)
+    for (std::size_t i = 0; i < out->rgb.size(); ++i) {
+        auto& brightest = out->brightest[static_cast<int>(i % 3)];
+        brightest = std::max(brightest, out->rgb[i]);
         if (!(out->rgb[i] >= 0 && out->rgb[i] <= kMaxColour)) {
             const std::size_t pixel = i / 3;
             throw SceneError(named + ": texel (" + std::to_string(pixel % out->width) + ", " +
                              std::to_string(pixel / out->width) +
                              ") has a radiance that is negative, not finite or above 1e6");
         }
+    }
     return out;
 }
 

@@ -39,6 +39,7 @@ TEST(Environment, AnHdrFileIsReadAsLinearRadianceTopRowFirst) {
     ASSERT_EQ(e->height, 1);
     EXPECT_EQ(std::vector<float>(e->rgb.begin(), e->rgb.end()),
               (std::vector<float>{1, 0.5f, 0.25f, 0, 2, 0}));
+    EXPECT_EQ(e->brightest, glm::vec3(1, 2, 0.25f)); // what the cut-off bound reads
 }
 
 TEST(Environment, AnExrFileIsReadAsItsRgb) {

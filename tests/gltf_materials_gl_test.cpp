@@ -276,6 +276,7 @@ TEST(GltfMaterials, TheEnvironmentFollowsTheFormulaAndIsSeenInBothModes) {
     environment->width = 4, environment->height = 2;
     for (int i = 0; i < 8; ++i)
         for (int k = 0; k < 3; ++k) environment->rgb.push_back(static_cast<float>(i * 3 + k) / 24);
+    environment->brightest = glm::vec3(21, 22, 23) / 24.0f; // as reading one sets it
     const auto texel = [&](int x, int y) {
         const float* p = &environment->rgb[static_cast<std::size_t>(y * 4 + x) * 3];
         return glm::vec3(p[0], p[1], p[2]);

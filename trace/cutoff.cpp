@@ -14,9 +14,7 @@ glm::dvec3 ray_radiance_bound(const Scene& scene) {
     for (const PointLight& light : scene.lights) light_sum += glm::dvec3(light.color);
     glm::dvec3 local = glm::dvec3(scene.background);
     if (scene.environment) // a ray that leaves returns at most the environment's brightest texel
-        for (std::size_t i = 0; i < scene.environment->rgb.size(); ++i)
-            local[static_cast<int>(i % 3)] =
-                std::max(local[static_cast<int>(i % 3)], double(scene.environment->rgb[i]));
+        local = glm::max(local, glm::dvec3(scene.environment->brightest));
     double reflectivity = 0;
     for (const Material& m : scene.materials) {
         glm::dvec3 specular(m.specular);

@@ -199,6 +199,7 @@ struct Environment {
     std::string name; // the file, or "studio" for the built-in one
     int width = 0, height = 0;
     std::vector<float> rgb; // width × height × 3, top row first
+    glm::vec3 brightest{0.0f}; // each channel's largest texel (the cut-off bound's), set on reading
 };
 
 struct Scene;
