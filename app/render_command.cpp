@@ -297,7 +297,7 @@ int run_sequence(const RenderArgs& args) {
     std::optional<GlPass> gl;
     if (needs_gl(settings, scene.objects.size())) gl.emplace(settings);
     const Stopwatch prepare_watch;
-    const auto geometry = std::make_shared<const SceneGeometry>(scene);
+    auto geometry = std::make_shared<const SceneGeometry>(scene);
     const double prepare_seconds = prepare_watch.seconds();
     char moving[256] = "no animation";
     if (scene.animation)
@@ -312,20 +312,30 @@ int run_sequence(const RenderArgs& args) {
     std::printf("%smeshes, BVHs and textures prepared once in %.3f s\n", who.c_str(),
                 prepare_seconds);
     std::fflush(stdout);
-    double traced = 0;
+    double traced = 0, posing = 0, structures = 0;
     int written = 0;
+    const std::vector<std::uint32_t> moving_meshes =
+        scene.animation ? scene.animation->moving_meshes() : std::vector<std::uint32_t>();
     for (int k = rank(); k < args.frames; k += ranks()) {
         const Stopwatch frame_watch;
         const double t = args.scene.time + k / args.fps;
         if (scene.animation && k > 0) {
+            Stopwatch phase;
             scene.animation->pose(scene, t);
             // A pose may scale a node to nothing: held to the scene's rules, frame by frame.
             check_scene(scene, [&](const std::string& path) {
                 return job.scene_path.string() + " at t = " + std::to_string(t) + " s: /" + path;
             });
+            posing += phase.lap();
+            // Skinned and morphed meshes moved: their BVHs are built again, the rest kept.
+            if (!moving_meshes.empty())
+                geometry = std::make_shared<const SceneGeometry>(*geometry, scene, moving_meshes);
+            structures += phase.lap();
         }
         if (args.orbit) scene.camera = orbit_camera(unorbited, k, args.frames);
+        const Stopwatch world_watch;
         const World world(scene, geometry, args.scene.accel_kind());
+        structures += world_watch.seconds();
         std::atomic<int> tiles_done{0};
         Frame frame;
         {
@@ -343,9 +353,11 @@ int run_sequence(const RenderArgs& args) {
                     args.frames, t, job.output.c_str(), frame_watch.seconds());
         std::fflush(stdout);
     }
-    std::printf("%sglint: wrote %d frame%s (%dx%d, %s) in %.3f s (render %.3f s)\n", who.c_str(),
-                written, written == 1 ? "" : "s", scene.camera.width, scene.camera.height,
-                args.frame.describe().c_str(), total.seconds(), traced);
+    std::printf("%sglint: wrote %d frame%s (%dx%d, %s) in %.3f s (pose %.3f s, structures "
+                "%.3f s, render %.3f s)\n",
+                who.c_str(), written, written == 1 ? "" : "s", scene.camera.width,
+                scene.camera.height, args.frame.describe().c_str(), total.seconds(), posing,
+                structures, traced);
     return 0;
 }
 

@@ -491,6 +491,27 @@ void MeshBuild(benchmark::State& state) {
 }
 BENCHMARK(MeshBuild)->Unit(benchmark::kMillisecond);
 
+// A skinned or morphed mesh's structure each frame (DESIGN §14): MeshBuild builds its tree anew;
+// this refits the tree to the triangles' new boxes (the cost does not depend on how far they
+// moved; the tree's quality does). MeshPrepare is everything a posed mesh is prepared with.
+void MeshRefit(benchmark::State& state) {
+    const Mesh& mesh = terrain().world->mesh(0);
+    const std::vector<Bounds> triangles = triangle_bounds(mesh);
+    for (auto _ : state) benchmark::DoNotOptimize(mesh.bvh.refitted(triangles));
+    state.SetLabel(std::to_string(triangles.size()) + " triangles");
+}
+BENCHMARK(MeshRefit)->Unit(benchmark::kMillisecond);
+
+void MeshPrepare(benchmark::State& state) {
+    const Mesh& prepared = terrain().world->mesh(0);
+    TriangleMesh mesh;
+    for (const Vec3& v : prepared.vertices) mesh.vertices.emplace_back(v);
+    mesh.triangles = prepared.triangles;
+    for (auto _ : state) benchmark::DoNotOptimize(prepare_mesh(mesh));
+    state.SetLabel(std::to_string(mesh.triangles.size()) + " triangles");
+}
+BENCHMARK(MeshPrepare)->Unit(benchmark::kMillisecond);
+
 #ifdef GLINT_HAVE_EMBREE
 // The peer scene in Embree: sphere points and one triangle mesh, committed once.
 class EmbreeScene {

@@ -88,6 +88,7 @@ std::vector<double> GltfAccessors::read_accessor(int index, int type, int width,
     if (a.type != type)
         fail(at + "/type", "is not the type " + use + " needs (" +
                                (type == TINYGLTF_TYPE_SCALAR ? "SCALAR"
+                                : type == TINYGLTF_TYPE_MAT4 ? "MAT4"
                                                              : "VEC" + std::to_string(width)) +
                                ")");
     if (std::find(component_types.begin(), component_types.end(), a.componentType) ==

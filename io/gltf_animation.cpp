@@ -29,33 +29,58 @@ glm::dvec4 slerp(glm::dvec4 a, glm::dvec4 b, double s) {
     return (std::sin(angle * (1 - s)) * a + sign * std::sin(angle * s) * b) / std::sin(angle);
 }
 
-} // namespace
+// Where t falls among the keys: before the first (k = 0, s = 0, held), after the last (the last
+// key, held), or in the interval [t_k, t_k+1) at fraction s.
+struct KeyPlace {
+    std::size_t k = 0;
+    double s = 0, span = 0;
+    bool held = true;
+};
 
-glm::dvec4 sample_keys(const KeyFrames& keys, double t, bool rotation) {
-    const std::vector<double>& times = keys.times;
-    const int value = keys.interpolation == Interpolation::cubic_spline ? 1 : 0;
-    const auto unit = [&](glm::dvec4 v) { return rotation ? glm::normalize(v) : v; };
-    if (!(t > times.front())) return unit(key(keys, 0, value));
-    if (t >= times.back()) return unit(key(keys, times.size() - 1, value));
-    // The key interval [t_k, t_k+1) that holds t.
+KeyPlace locate(const std::vector<double>& times, double t) {
+    if (!(t > times.front())) return {};
+    if (t >= times.back()) return {times.size() - 1, 0, 0, true};
     const std::size_t k =
         static_cast<std::size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin()) - 1;
     const double span = times[k + 1] - times[k];
-    const double s = (t - times[k]) / span;
-    switch (keys.interpolation) {
-    case Interpolation::step: return unit(key(keys, k, 0));
-    case Interpolation::linear:
-        return rotation ? slerp(key(keys, k, 0), key(keys, k + 1, 0), s)
-                        : glm::mix(key(keys, k, 0), key(keys, k + 1, 0), s);
-    case Interpolation::cubic_spline: {
-        const glm::dvec4 p0 = key(keys, k, 1), m0 = span * key(keys, k, 2);
-        const glm::dvec4 p1 = key(keys, k + 1, 1), m1 = span * key(keys, k + 1, 0);
-        const double s2 = s * s, s3 = s2 * s;
-        return unit((2 * s3 - 3 * s2 + 1) * p0 + (s3 - 2 * s2 + s) * m0 +
-                    (-2 * s3 + 3 * s2) * p1 + (s3 - s2) * m1);
-    }
-    }
-    return {};
+    return {k, (t - times[k]) / span, span, false};
+}
+
+// Component c of key k's element (0 in-tangent or value, 1 value, 2 out-tangent).
+double component(const KeyFrames& keys, std::size_t k, int element, int c) {
+    const int per_key = keys.interpolation == Interpolation::cubic_spline ? 3 : 1;
+    return keys.values[(k * per_key + element) * keys.width + c];
+}
+
+// Component c at `at`, interpolated as a translation is (STEP, LINEAR, CUBICSPLINE's Hermite).
+double interpolate(const KeyFrames& keys, const KeyPlace& at, int c) {
+    const int value = keys.interpolation == Interpolation::cubic_spline ? 1 : 0;
+    if (at.held || keys.interpolation == Interpolation::step) return component(keys, at.k, value, c);
+    if (keys.interpolation == Interpolation::linear)
+        return (1 - at.s) * component(keys, at.k, 0, c) + at.s * component(keys, at.k + 1, 0, c);
+    const double p0 = component(keys, at.k, 1, c), m0 = at.span * component(keys, at.k, 2, c);
+    const double p1 = component(keys, at.k + 1, 1, c), m1 = at.span * component(keys, at.k + 1, 0, c);
+    const double s = at.s, s2 = s * s, s3 = s2 * s;
+    return (2 * s3 - 3 * s2 + 1) * p0 + (s3 - 2 * s2 + s) * m0 + (-2 * s3 + 3 * s2) * p1 +
+           (s3 - s2) * m1;
+}
+
+} // namespace
+
+glm::dvec4 sample_keys(const KeyFrames& keys, double t, bool rotation) {
+    const KeyPlace at = locate(keys.times, t);
+    glm::dvec4 v(0.0);
+    if (rotation && !at.held && keys.interpolation == Interpolation::linear)
+        return slerp(key(keys, at.k, 0), key(keys, at.k + 1, 0), at.s);
+    for (int c = 0; c < keys.width; ++c) v[c] = interpolate(keys, at, c);
+    return rotation ? glm::normalize(v) : v;
+}
+
+std::vector<double> sample_weights(const KeyFrames& keys, double t) {
+    const KeyPlace at = locate(keys.times, t);
+    std::vector<double> out(static_cast<std::size_t>(keys.width));
+    for (int c = 0; c < keys.width; ++c) out[static_cast<std::size_t>(c)] = interpolate(keys, at, c);
+    return out;
 }
 
 DMat4 trs_matrix(const NodeTrs& trs) {
@@ -84,23 +109,24 @@ bool GltfMotion::moves(std::size_t k) const {
     return !channels_of[k].empty();
 }
 
-DMat4 GltfMotion::local(std::size_t k, double t) const {
+DMat4 GltfMotion::local(std::size_t k, std::optional<double> t) const {
     const Node& n = nodes[k];
-    if (!moves(k)) return n.has_matrix ? n.matrix : trs_matrix(n.trs);
+    if (!t || !moves(k)) return n.has_matrix ? n.matrix : trs_matrix(n.trs);
     NodeTrs trs = n.trs;
     for (const std::size_t index : channels_of[k]) {
         const Channel& c = channels[index];
-        const glm::dvec4 v = sample_keys(samplers[c.keys], t, c.path == TrsPath::rotation);
+        const glm::dvec4 v = sample_keys(samplers[c.keys], *t, c.path == TrsPath::rotation);
         switch (c.path) {
         case TrsPath::translation: trs.translation = DVec3(v); break;
         case TrsPath::rotation: trs.rotation = v; break;
         case TrsPath::scale: trs.scale = DVec3(v); break;
+        case TrsPath::weights: break; // not among `channels`
         }
     }
     return trs_matrix(trs);
 }
 
-std::vector<DMat4> GltfMotion::world(double t) const {
+std::vector<DMat4> GltfMotion::world(std::optional<double> t) const {
     std::vector<DMat4> out(nodes.size(), DMat4(1.0));
     // The loader has checked the graph: a forest, each node under one parent at most.
     std::vector<std::pair<std::size_t, DMat4>> stack;
@@ -120,10 +146,39 @@ double GltfMotion::duration() const {
     return last;
 }
 
+std::vector<double> GltfMotion::weights(std::size_t k, std::optional<double> t) const {
+    std::vector<double> w = rest_weights[k];
+    if (t)
+        for (const Channel& c : weight_channels)
+            if (c.node == k) w = sample_weights(samplers[c.keys], *t);
+    return w;
+}
+
+void GltfMotion::deform(std::vector<TriangleMesh>& meshes, const std::vector<DMat4>& at,
+                        std::optional<double> t) const {
+    std::vector<std::vector<DMat4>> joint_matrices(skins.size());
+    for (std::size_t s = 0; s < skins.size(); ++s)
+        for (std::size_t j = 0; j < skins[s].joints.size(); ++j)
+            joint_matrices[s].push_back(at[skins[s].joints[j]] * skins[s].inverse_bind[j]);
+    for (const Deformable& d : deformables) {
+        const std::vector<double> morph = weights(d.node, t);
+        glint::deform(d, morph, d.skin ? std::span<const DMat4>(joint_matrices[*d.skin])
+                                       : std::span<const DMat4>(),
+                      meshes[d.mesh]);
+    }
+}
+
+std::vector<std::uint32_t> GltfMotion::moving_meshes() const {
+    std::vector<std::uint32_t> out;
+    for (const Deformable& d : deformables) out.push_back(d.mesh);
+    return out;
+}
+
 void GltfMotion::pose(Scene& scene, double t) const {
     const std::vector<DMat4> at = world(t);
     for (std::size_t i = 0; i < object_nodes.size() && i < scene.objects.size(); ++i)
-        scene.objects[i].transform = at[object_nodes[i]];
+        if (object_nodes[i] != kNoNode) scene.objects[i].transform = at[object_nodes[i]];
+    deform(scene.meshes, at, t);
     for (std::size_t i = 0; i < light_nodes.size() && i < scene.lights.size(); ++i)
         if (light_nodes[i] < at.size())
             scene.lights[i].position = DVec3(at[light_nodes[i]] * glm::dvec4(0, 0, 0, 1));
@@ -174,22 +229,33 @@ class AnimationReader {
             if (c.target_path == "translation") path = TrsPath::translation;
             else if (c.target_path == "rotation") path = TrsPath::rotation;
             else if (c.target_path == "scale") path = TrsPath::scale;
-            else if (c.target_path == "weights") {
-                unused_("morph target weights (animation channels)", channel_at);
-                continue;
-            } else {
+            else if (c.target_path == "weights") path = TrsPath::weights;
+            else {
                 accessors_.fail(channel_at + "/target/path",
                      "must be translation, rotation, scale or weights, not '" +
                          printable(c.target_path) + "'");
             }
             if (c.sampler < 0 || static_cast<std::size_t>(c.sampler) >= a.samplers.size())
                 accessors_.fail(channel_at + "/sampler", "no sampler " + std::to_string(c.sampler));
+            const auto node = static_cast<std::size_t>(c.target_node);
+            const std::string sampler_at = at + "/samplers/" + std::to_string(c.sampler);
+            if (path == TrsPath::weights) {
+                const std::size_t targets = morph_targets(node);
+                if (targets == 0)
+                    accessors_.fail(channel_at + "/target/node",
+                                    "node " + std::to_string(node) +
+                                        " has no mesh with morph targets for weights to move");
+                motion->samplers.push_back(keys(a.samplers[static_cast<std::size_t>(c.sampler)],
+                                                sampler_at, path, targets));
+                motion->weight_channels.push_back({node, path, motion->samplers.size() - 1});
+                continue;
+            }
             if (!m_.nodes[static_cast<std::size_t>(c.target_node)].matrix.empty())
                 accessors_.fail(pointer("nodes", static_cast<std::size_t>(c.target_node)) + "/matrix",
                      "an animated node must be placed by translation, rotation and scale, not "
                      "a matrix (" + channel_at + " moves it)");
             motion->samplers.push_back(keys(a.samplers[static_cast<std::size_t>(c.sampler)],
-                                            at + "/samplers/" + std::to_string(c.sampler), path));
+                                            sampler_at, path));
             motion->channels_of[static_cast<std::size_t>(c.target_node)].push_back(
                 motion->channels.size());
             motion->channels.push_back({static_cast<std::size_t>(c.target_node), path,
@@ -199,9 +265,19 @@ class AnimationReader {
     }
 
   private:
+// The morph targets of node k's mesh (its first primitive's: the loader checks that every
+// primitive has as many), or 0.
+std::size_t morph_targets(std::size_t k) const {
+    const int mesh = m_.nodes[k].mesh;
+    if (mesh < 0 || static_cast<std::size_t>(mesh) >= m_.meshes.size()) return 0;
+    const tinygltf::Mesh& m = m_.meshes[static_cast<std::size_t>(mesh)];
+    return m.primitives.empty() ? 0 : m.primitives[0].targets.size();
+}
+
 // A sampler's keys for a channel of `path`: times strictly increasing, outputs of the path's
-// type, one (three for CUBICSPLINE) a key.
-KeyFrames keys(const tinygltf::AnimationSampler& s, const std::string& at, TrsPath path) const {
+// type, one (three for CUBICSPLINE) a key; morph weights, `targets` scalars a key.
+KeyFrames keys(const tinygltf::AnimationSampler& s, const std::string& at, TrsPath path,
+               std::size_t targets = 0) const {
     KeyFrames out;
     if (s.interpolation.empty() || s.interpolation == "LINEAR")
         out.interpolation = Interpolation::linear;
@@ -225,26 +301,33 @@ KeyFrames keys(const tinygltf::AnimationSampler& s, const std::string& at, TrsPa
                                seconds_text(out.times[k - 1]) + " s)");
     }
     const bool rotation = path == TrsPath::rotation;
-    out.width = rotation ? 4 : 3;
+    out.width = rotation ? 4 : path == TrsPath::weights ? static_cast<int>(targets) : 3;
     const std::size_t per_key = out.interpolation == Interpolation::cubic_spline ? 3 : 1;
     const std::size_t wanted = out.times.size() * per_key;
     const std::string use = at + "/output";
-    out.values = rotation
-                     ? accessors_.read_accessor(s.output, TINYGLTF_TYPE_VEC4, 4,
-                                     {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
-                                      TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-                                      TINYGLTF_COMPONENT_TYPE_SHORT,
-                                      TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
-                                     use, kMaxAnimationKeys * 3)
-                     : accessors_.read_accessor(s.output, TINYGLTF_TYPE_VEC3, 3,
-                                     {TINYGLTF_COMPONENT_TYPE_FLOAT}, use,
-                                     kMaxAnimationKeys * 3);
+    const std::initializer_list<int> quantized = {
+        TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
+        TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT,
+        TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT};
+    if (path == TrsPath::weights) {
+        // Scalars, `targets` a key: read as one and regrouped by the width.
+        out.values = accessors_.read_accessor(s.output, TINYGLTF_TYPE_SCALAR, 1, quantized, use,
+                                              kMaxAnimationKeys * 3 * targets);
+    } else {
+        // Integer components: KHR_mesh_quantization's (rotations normalized, translations and
+        // scales either).
+        out.values = accessors_.read_accessor(s.output, rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3,
+                                              out.width, quantized, use, kMaxAnimationKeys * 3);
+    }
     const std::string output_at = pointer("accessors", static_cast<std::size_t>(s.output));
     const std::size_t count = out.values.size() / static_cast<std::size_t>(out.width);
-    if (count != wanted)
+    const bool scalars = path == TrsPath::weights; // one element a target
+    if (out.values.size() != wanted * static_cast<std::size_t>(out.width))
         accessors_.fail(output_at + "/count",
-             std::to_string(count) + " elements, where the sampler's " +
-                 std::to_string(out.times.size()) + " keys need " + std::to_string(wanted) +
+             std::to_string(scalars ? out.values.size() : count) + " elements, where the sampler's " +
+                 std::to_string(out.times.size()) + " keys need " +
+                 std::to_string(scalars ? wanted * targets : wanted) +
+                 (scalars ? " (one a morph target)" : "") +
                  (per_key == 3 ? " (CUBICSPLINE: in-tangent, value, out-tangent a key)" : ""));
     for (std::size_t i = 0; i < out.values.size(); ++i)
         if (!(std::abs(out.values[i]) <= kMaxCoordinate))

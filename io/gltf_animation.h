@@ -5,6 +5,7 @@
 // io/gltf_loader.cpp reads and checks them; GltfMotion then places a loaded scene at any time.
 #pragma once
 
+#include "io/gltf_skin.h"
 #include "trace/scene.h"
 
 #include <glm/glm.hpp>
@@ -25,7 +26,7 @@ namespace glint {
 class GltfAccessors;
 
 enum class Interpolation : std::uint8_t { step, linear, cubic_spline };
-enum class TrsPath : std::uint8_t { translation, rotation, scale };
+enum class TrsPath : std::uint8_t { translation, rotation, scale, weights };
 
 // One sampler as a channel reads it.
 struct KeyFrames {
@@ -33,12 +34,15 @@ struct KeyFrames {
     // `width` numbers a key (3, or 4 for rotations: x, y, z, w); CUBICSPLINE keeps three
     // elements a key, in-tangent, value, out-tangent.
     std::vector<double> values;
-    int width = 3;
+    int width = 3; // morph weights: one a target
+
     Interpolation interpolation = Interpolation::linear;
 };
 
 // The keys' value at time t (unused components 0); a rotation comes back a unit quaternion.
 glm::dvec4 sample_keys(const KeyFrames& keys, double t, bool rotation);
+// Morph weights' keys at time t: `width` values, each interpolated as a translation's would be.
+std::vector<double> sample_weights(const KeyFrames& keys, double t);
 
 // A node's local transform as glTF composes it: T · R · S.
 struct NodeTrs {
@@ -51,8 +55,10 @@ DMat4 trs_matrix(const NodeTrs& trs);
 // checked the arrays' sizes and that the rotation is not zero.
 NodeTrs node_trs(const tinygltf::Node& node);
 
-// What the loader records of a model's node tree and the chosen animation, so that poses at other
-// times need no second reading of the file.
+// What the loader records of a model's node tree, the chosen animation and the skins and morph
+// targets it moves, so that poses at other times need no second reading of the file. A model
+// with skins or morph targets and no animation asked for has one too, with no channels: it poses
+// them once, at rest.
 class GltfMotion final : public Animation {
   public:
     struct Channel {
@@ -71,35 +77,49 @@ class GltfMotion final : public Animation {
     std::vector<Node> nodes;
     std::vector<std::size_t> roots;
     std::vector<KeyFrames> samplers;
-    std::vector<Channel> channels;
+    std::vector<Channel> channels; // translation, rotation and scale
+    std::vector<Channel> weight_channels; // morph weights, path `weights`
     // Per node, the indices of the channels that move it (made with `channels`).
     std::vector<std::vector<std::size_t>> channels_of;
-    // What the scene's parts hang on: per object and per light, its node; the file camera's
-    // node, when the scene looks through one.
+    // What the scene's parts hang on: per object and per light, its node (kNoNode: a skinned
+    // object, posed in world space, or a directional light, which does not follow); the file
+    // camera's node, when the scene looks through one.
+    static constexpr std::size_t kNoNode = ~std::size_t{0};
     std::vector<std::size_t> object_nodes, light_nodes;
     std::optional<std::size_t> camera_node;
+    // The skins and the meshes they and morph targets move; per node, its morph weights as the
+    // file gives them (the node's, else its mesh's, else zeros; empty for a node without).
+    std::vector<GltfSkin> skins;
+    std::vector<Deformable> deformables;
+    std::vector<std::vector<double>> rest_weights;
+    // Whether an animation was asked for and read: without, this only poses skins and morph
+    // targets at rest, and is not the scene's Animation.
+    bool animated = false;
 
-    // Node k's local matrix at time t.
-    DMat4 local(std::size_t k, double t) const;
+    // Node k's local matrix at time t; none: at rest, as the file places it.
+    DMat4 local(std::size_t k, std::optional<double> t) const;
     // Whether a channel moves node k.
     bool moves(std::size_t k) const;
-    // Every node's world matrix at time t.
-    std::vector<DMat4> world(double t) const;
+    // Every node's world matrix at time t (none: at rest).
+    std::vector<DMat4> world(std::optional<double> t) const;
+    // Node k's morph weights at time t (none: at rest).
+    std::vector<double> weights(std::size_t k, std::optional<double> t) const;
+    // Poses every deformable's mesh in `meshes` with the nodes at `world` and the weights at t.
+    void deform(std::vector<TriangleMesh>& meshes, const std::vector<DMat4>& world,
+                std::optional<double> t) const;
 
     std::string name() const override { return label; }
     double duration() const override;
     void pose(Scene& scene, double t) const override;
+    std::vector<std::uint32_t> moving_meshes() const override;
 };
-
-// What a reader skips with a warning: the feature, and the first place it is met.
-using UnusedFeature = std::function<void(const std::string& feature, const std::string& place)>;
 
 // Animation `index` of `model` (in range: the caller checks), its channels and keys checked
 // (docs/SCENES.md, "Animation"): key times finite and strictly increasing, outputs of the
-// channel's type and count, rotations not zero, no animated node placed by a matrix; morph
-// target weights and channels without a node are skipped through `unused`. Its nodes are sized
-// for the model and left for the loader's walk to fill (the nodes' own TRS, children, roots,
-// and what hangs on them).
+// channel's type and count (morph weights: one a target of the node's mesh), rotations not
+// zero, no animated node placed by a matrix; channels without a node are skipped through
+// `unused`. Its nodes are sized for the model and left for the loader's walk to fill (the
+// nodes' own TRS, children, roots, and what hangs on them).
 std::shared_ptr<GltfMotion> read_gltf_animation(const tinygltf::Model& model, int index,
                                                 const GltfAccessors& accessors,
                                                 const UnusedFeature& unused);

@@ -5,6 +5,7 @@
 #include "io/gltf_animation.h"
 #include "io/gltf_container.h"
 #include "io/gltf_materials.h"
+#include "io/gltf_skin.h"
 #include "io/model_scene.h"
 #include "io/read_text.h"
 #include "io/scene_check.h"
@@ -40,10 +41,18 @@ class Reader {
     Scene read() {
         if (options_.size) std::tie(scene_.camera.width, scene_.camera.height) = *options_.size;
         if (options_.time) read_animation();
+        prepare_deformation();
         walk_nodes();
+        if (motion_ && !motion_->deformables.empty()) {
+            const std::optional<double> t = motion_->animated ? options_.time : std::nullopt;
+            motion_->deform(scene_.meshes, motion_->world(t), t);
+        }
+        if (!renormalized_.empty())
+            scene_.warnings.push_back(name_ + ": skin weights that do not sum to 1 are "
+                                      "renormalized (the first: " + renormalized_ + ")");
         camera();
         lights();
-        if (motion_) scene_.animation = motion_;
+        if (motion_ && motion_->animated) scene_.animation = motion_;
         if (!unused_.empty()) {
             std::string list;
             for (const auto& [feature, place] : unused_)
@@ -65,15 +74,21 @@ class Reader {
 
     // ---- meshes ----------------------------------------------------------------------------
 
+    // A drawable primitive as glint has it: its mesh (in Scene::meshes) and material.
+    struct Part {
+        std::uint32_t mesh, material;
+        std::size_t primitive; // its index in the glTF mesh
+    };
+
     // The glint meshes (one per drawable primitive) of glTF mesh `index`, with their materials:
     // made on first use, placed again by every further node (instances).
-    const std::vector<std::pair<std::uint32_t, std::uint32_t>>& mesh(int index,
-                                                                      const std::string& use) {
+    const std::vector<Part>& mesh(int index, const std::string& use) {
         if (index < 0 || static_cast<std::size_t>(index) >= m_.meshes.size())
             fail(use, "no mesh " + std::to_string(index));
         if (const auto it = meshes_.find(index); it != meshes_.end()) return it->second;
-        std::vector<std::pair<std::uint32_t, std::uint32_t>> parts;
+        std::vector<Part> parts;
         const tinygltf::Mesh& mesh = m_.meshes[static_cast<std::size_t>(index)];
+        check_targets(mesh, pointer("meshes", static_cast<std::size_t>(index)));
         for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
             const std::string at =
                 pointer("meshes", static_cast<std::size_t>(index)) + "/primitives/" +
@@ -81,7 +96,7 @@ class Reader {
             std::optional<TriangleMesh> triangles = primitive(mesh.primitives[p], at);
             if (!triangles) continue;
             const std::uint32_t material = primitive_material(mesh.primitives[p], at);
-            parts.emplace_back(static_cast<std::uint32_t>(scene_.meshes.size()), material);
+            parts.push_back({static_cast<std::uint32_t>(scene_.meshes.size()), material, p});
             scene_.meshes.push_back(std::move(*triangles));
         }
         return meshes_.emplace(index, std::move(parts)).first->second;
@@ -222,8 +237,96 @@ class Reader {
             }
         }
         if (mesh.triangles.empty()) fail(at, "makes no triangle");
-        if (!p.targets.empty()) unused("morph targets", at);
         return mesh;
+    }
+
+    // ---- skins and morph targets -----------------------------------------------------------
+
+    // The morph targets of glTF mesh `index` (its primitives have as many: check_targets).
+    std::size_t morph_targets(int index) const {
+        const tinygltf::Mesh& mesh = m_.meshes[static_cast<std::size_t>(index)];
+        return mesh.primitives.empty() ? 0 : mesh.primitives[0].targets.size();
+    }
+
+    // Every primitive of a mesh has as many morph targets, and its `weights` one a target.
+    void check_targets(const tinygltf::Mesh& mesh, const std::string& at) const {
+        const std::size_t n = mesh.primitives.empty() ? 0 : mesh.primitives[0].targets.size();
+        for (std::size_t p = 1; p < mesh.primitives.size(); ++p)
+            if (mesh.primitives[p].targets.size() != n)
+                fail(at + "/primitives/" + std::to_string(p) + "/targets",
+                     std::to_string(mesh.primitives[p].targets.size()) +
+                         " morph targets, where primitive 0 has " + std::to_string(n) +
+                         " (a mesh's primitives have as many)");
+        if (!mesh.weights.empty() && mesh.weights.size() != n)
+            fail(at + "/weights", std::to_string(mesh.weights.size()) + " weights for " +
+                                      std::to_string(n) + " morph targets");
+    }
+
+    // Where the model has skins or morph targets, the motion that poses them: the animation
+    // asked for, or one without channels that poses them at rest.
+    void prepare_deformation() {
+        bool any = !m_.skins.empty();
+        for (const tinygltf::Mesh& mesh : m_.meshes)
+            for (const tinygltf::Primitive& p : mesh.primitives) any |= !p.targets.empty();
+        if (!any) return;
+        if (!motion_) {
+            motion_ = std::make_shared<GltfMotion>();
+            motion_->nodes.resize(m_.nodes.size());
+            motion_->channels_of.resize(m_.nodes.size());
+        }
+        motion_->rest_weights.resize(m_.nodes.size());
+    }
+
+    // Skin `index` as the motion holds it: read on first use.
+    std::size_t skin(int index, const std::string& use) {
+        if (index < 0 || static_cast<std::size_t>(index) >= m_.skins.size())
+            fail(use, "no skin " + std::to_string(index));
+        if (const auto it = skins_.find(index); it != skins_.end()) return it->second;
+        motion_->skins.push_back(read_skin(m_, index, accessors_));
+        return skins_.emplace(index, motion_->skins.size() - 1).first->second;
+    }
+
+    // Node k's primitives, each a glint mesh of its own that its skin or morph targets move.
+    std::vector<Part> deformable_parts(std::size_t k) {
+        const tinygltf::Node& n = m_.nodes[k];
+        const std::string at = pointer("nodes", k);
+        const auto m = static_cast<std::size_t>(n.mesh);
+        const tinygltf::Mesh& mesh = m_.meshes[m];
+        check_targets(mesh, pointer("meshes", m));
+        std::optional<std::size_t> skin_index, joints;
+        if (n.skin >= 0) {
+            skin_index = skin(n.skin, at + "/skin");
+            joints = motion_->skins[*skin_index].joints.size();
+        }
+        const std::size_t targets = morph_targets(n.mesh);
+        if (!n.weights.empty() && n.weights.size() != targets)
+            fail(at + "/weights", std::to_string(n.weights.size()) + " weights for the " +
+                                      std::to_string(targets) + " morph targets of its mesh");
+        std::vector<double> weights = n.weights.empty() ? mesh.weights : n.weights;
+        weights.resize(targets, 0.0);
+        for (std::size_t i = 0; i < weights.size(); ++i)
+            if (!(std::abs(weights[i]) <= kMaxCoordinate))
+                fail(n.weights.empty() ? pointer("meshes", m) + "/weights" : at + "/weights",
+                     "weight " + std::to_string(i) + " must be finite and within ±1e15");
+        motion_->rest_weights[k] = std::move(weights);
+        const UnusedFeature skip = [this](const std::string& feature, const std::string& place) {
+            unused(feature, place);
+        };
+        std::vector<Part> parts;
+        for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+            const std::string p_at = pointer("meshes", m) + "/primitives/" + std::to_string(p);
+            std::optional<TriangleMesh> triangles = primitive(mesh.primitives[p], p_at);
+            if (!triangles) continue;
+            Deformable d = read_deformable(mesh.primitives[p], p_at, *triangles, joints,
+                                           accessors_, skip, renormalized_);
+            d.mesh = static_cast<std::uint32_t>(scene_.meshes.size());
+            d.node = k;
+            d.skin = skin_index;
+            parts.push_back({d.mesh, primitive_material(mesh.primitives[p], p_at), p});
+            scene_.meshes.push_back(std::move(*triangles));
+            motion_->deformables.push_back(std::move(d));
+        }
+        return parts;
     }
 
     // ---- animation -------------------------------------------------------------------------
@@ -245,6 +348,7 @@ class Reader {
                                                                 const std::string& place) {
             unused(feature, place);
         });
+        motion_->animated = true;
     }
 
     // ---- nodes -----------------------------------------------------------------------------
@@ -364,25 +468,30 @@ class Reader {
         const tinygltf::Node& n = m_.nodes[k];
         const std::string at = pointer("nodes", k);
         if (n.mesh >= 0) {
-            const auto& parts = mesh(n.mesh, at + "/mesh");
+            if (static_cast<std::size_t>(n.mesh) >= m_.meshes.size())
+                fail(at + "/mesh", "no mesh " + std::to_string(n.mesh));
+            // A skinned mesh is posed in world space: the node's own matrix does not place it.
+            const bool skinned = n.skin >= 0;
+            const std::vector<Part> parts = skinned || morph_targets(n.mesh) > 0
+                                                ? deformable_parts(k)
+                                                : mesh(n.mesh, at + "/mesh");
             if (scene_.objects.size() + parts.size() > kMaxModelObjects)
                 fail(at, "the model places more than " + std::to_string(kMaxModelObjects) +
                              " objects");
             const std::string& mesh_name = m_.meshes[static_cast<std::size_t>(n.mesh)].name;
-            for (const auto& [glint_mesh, material] : parts) {
+            for (const Part& part : parts) {
                 SceneObject o;
                 o.shape = ShapeKind::mesh;
-                o.mesh = glint_mesh;
-                o.material = material;
-                o.transform = world;
+                o.mesh = part.mesh;
+                o.material = part.material;
+                o.transform = skinned ? DMat4(1.0) : world;
                 scene_.objects.push_back(o);
-                rest_transforms_.push_back(rest);
-                if (motion_) motion_->object_nodes.push_back(k);
+                rest_transforms_.push_back(skinned ? DMat4(1.0) : rest);
+                if (motion_) motion_->object_nodes.push_back(skinned ? GltfMotion::kNoNode : k);
                 scene_.object_names.push_back(printable(n.name.empty() ? mesh_name : n.name));
                 object_places_.push_back(at);
             }
         }
-        if (n.skin >= 0) unused("skins (meshes drawn as their nodes place them)", at);
         if (n.camera >= 0) {
             if (static_cast<std::size_t>(n.camera) >= m_.cameras.size())
                 fail(at + "/camera", "no camera " + std::to_string(n.camera));
@@ -470,7 +579,7 @@ class Reader {
             scene_.lights.push_back(light);
             // A directional light stands far off along its direction: it does not follow.
             if (motion_)
-                motion_->light_nodes.push_back(l.type == "directional" ? ~std::size_t{0} : p.node);
+                motion_->light_nodes.push_back(l.type == "directional" ? GltfMotion::kNoNode : p.node);
             light_places_.push_back(at);
         }
         if (lights_.empty()) {
@@ -479,7 +588,13 @@ class Reader {
             std::vector<SceneObject> at_rest = scene_.objects;
             for (std::size_t i = 0; i < at_rest.size(); ++i)
                 at_rest[i].transform = rest_transforms_[i];
-            const std::optional<ModelSphere> sphere = model_sphere(at_rest, scene_.meshes);
+            std::vector<TriangleMesh> posed_at_rest;
+            if (motion_ && motion_->animated && !motion_->deformables.empty()) {
+                posed_at_rest = scene_.meshes;
+                motion_->deform(posed_at_rest, motion_->world(std::nullopt), std::nullopt);
+            }
+            const std::optional<ModelSphere> sphere =
+                model_sphere(at_rest, posed_at_rest.empty() ? scene_.meshes : posed_at_rest);
             light_model(scene_, sphere ? std::optional(sphere->centre) : std::nullopt);
             light_places_.assign(scene_.lights.size(), "the default lights");
         }
@@ -532,14 +647,18 @@ class Reader {
     const GltfAccessors accessors_;
     Scene scene_;
     GltfMaterials materials_; // after scene_, which it adds to
-    std::map<int, std::vector<std::pair<std::uint32_t, std::uint32_t>>> meshes_;
+    std::map<int, std::vector<Part>> meshes_;
     std::map<int, Placed> cameras_; // by camera index: ordered, so the first is /cameras' first
     std::vector<PlacedLight> lights_;
     std::map<std::string, std::string> unused_;
     std::vector<std::string> object_places_, light_places_;
     std::vector<MeshPlace> mesh_places_;
     std::vector<DMat4> rest_transforms_; // each object's world matrix without the animation
-    std::shared_ptr<GltfMotion> motion_; // the animation asked for (options_.time), or none
+    // The animation asked for (options_.time), or the rest pose of skins and morph targets, or
+    // none.
+    std::shared_ptr<GltfMotion> motion_;
+    std::map<int, std::size_t> skins_; // glTF skin → its index in motion_->skins
+    std::string renormalized_;         // where skin weights were first renormalized
     std::string camera_place_, camera_place_node_;
 };
 

@@ -204,9 +204,11 @@ struct Environment {
 
 struct Scene;
 
-// A model's motion (a glTF animation's node channels, io/gltf_animation.h): places the scene's
-// objects, lights and file camera at any time t ≥ 0 in seconds (DESIGN §13, "Animation time").
-// The meshes, materials and textures do not move: a sequence prepares them once.
+// A model's motion (a glTF animation's node channels, skins and morph targets,
+// io/gltf_animation.h): places the scene's objects, lights and file camera at any time t ≥ 0 in
+// seconds (DESIGN §13, "Animation time"), and poses the meshes that skins and morph targets move
+// (DESIGN §14). The materials, textures and other meshes do not move: a sequence prepares them
+// once, and prepares again only the moving meshes.
 class Animation {
   public:
     virtual ~Animation() = default;
@@ -215,6 +217,8 @@ class Animation {
     // Sets `scene`'s object transforms (and the lights and camera that animated nodes carry)
     // to their values at time t; `scene` is the one the animation was read with.
     virtual void pose(Scene& scene, double t) const = 0;
+    // The meshes (indices in Scene::meshes) that pose() changes.
+    virtual std::vector<std::uint32_t> moving_meshes() const { return {}; }
 };
 
 struct Scene {

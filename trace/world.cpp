@@ -39,6 +39,24 @@ Hit hit_on(std::uint32_t index, const ShapeHit& h) {
 } // namespace
 
 SceneGeometry::SceneGeometry(const Scene& scene) : textures(scene.textures) {
+    prepare_materials(scene);
+    const Stopwatch watch;
+    for (const TriangleMesh& mesh : scene.meshes)
+        meshes.push_back(std::make_shared<const Mesh>(prepare_mesh(mesh)));
+    build_seconds = watch.seconds();
+}
+
+SceneGeometry::SceneGeometry(const SceneGeometry& previous, const Scene& scene,
+                             std::span<const std::uint32_t> moved)
+    : meshes(previous.meshes), textures(scene.textures) {
+    prepare_materials(scene);
+    const Stopwatch watch;
+    for (const std::uint32_t m : moved)
+        meshes[m] = std::make_shared<const Mesh>(prepare_mesh(scene.meshes[m]));
+    build_seconds = watch.seconds();
+}
+
+void SceneGeometry::prepare_materials(const Scene& scene) {
     const auto texture = [&](std::uint32_t index) {
         return index == kNoTexture ? nullptr : &textures[index];
     };
@@ -66,9 +84,6 @@ SceneGeometry::SceneGeometry(const Scene& scene) : textures(scene.textures) {
         transmissive |= m.transmission > 0;
         secondary |= m.reflectivity > 0 || m.transmission > 0;
     }
-    const Stopwatch watch;
-    for (const TriangleMesh& mesh : scene.meshes) meshes.push_back(prepare_mesh(mesh));
-    build_seconds = watch.seconds();
 }
 
 World::World(const Scene& scene, std::shared_ptr<const SceneGeometry> geometry, CameraRelative)
@@ -86,7 +101,7 @@ World::World(const Scene& scene, std::shared_ptr<const SceneGeometry> geometry, 
         const bool triangles = shape_traits(o.shape).keys.vertices;
         const std::optional<CutOut>& cut_out = geometry_->materials[o.material].cut_out;
         const ShapeParams params{o.top_radius, o.open,
-                                 triangles ? &geometry_->meshes[o.mesh] : nullptr,
+                                 triangles ? geometry_->meshes[o.mesh].get() : nullptr,
                                  triangles && cut_out ? &*cut_out : nullptr};
         objects_.push_back({o.shape, make_transform(m), o.material, params, box.has_value(),
                             box ? world_bounds(*box, m) : Bounds{}});

@@ -107,8 +107,12 @@ inline constexpr std::size_t kListBelow = 16;
 // sweep's settings).
 struct SceneGeometry {
     explicit SceneGeometry(const Scene& scene);
+    // The same scene after an animation's pose (Animation::pose): `moved` meshes (indices in
+    // Scene::meshes) prepared again, every other shared with `previous`.
+    SceneGeometry(const SceneGeometry& previous, const Scene& scene,
+                  std::span<const std::uint32_t> moved);
 
-    std::vector<Mesh> meshes;
+    std::vector<std::shared_ptr<const Mesh>> meshes;
     std::vector<Texture> textures; // what Phong::texture points into
     std::vector<Phong> materials;
     bool transmissive = false; // some material transmits: shadow rays must count crossings
@@ -116,6 +120,9 @@ struct SceneGeometry {
     // frame's cut-off weights, trace/cutoff.h). Without one, every omitted weight is 0.
     bool secondary = false;
     double build_seconds = 0;  // the meshes' BVHs
+
+  private:
+    void prepare_materials(const Scene& scene);
 };
 
 class World {
@@ -164,7 +171,7 @@ class World {
 
     const PinholeCamera& camera() const { return camera_; }
     const std::vector<Object>& objects() const { return objects_; }
-    const Mesh& mesh(std::uint32_t index) const { return geometry_->meshes[index]; }
+    const Mesh& mesh(std::uint32_t index) const { return *geometry_->meshes[index]; }
     const std::vector<Light>& lights() const { return lights_; }
     const Phong& material(std::uint32_t object) const {
         return geometry_->materials[objects_[object].material];
