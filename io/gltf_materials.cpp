@@ -83,6 +83,7 @@ std::uint32_t GltfMaterials::material(int index) {
     emission(g, at, out);
     alpha_mode(g, at, pbr_at, out);
     phong_of_factors(out);
+    if (g.extensions.contains("KHR_materials_unlit")) unlit(out);
     for (const auto& [extension, value] : g.extensions)
         if (!kKnownExtensions.contains(extension)) unused_("extension " + printable(extension), at);
     const auto k = static_cast<std::uint32_t>(scene_.materials.size());
@@ -109,6 +110,23 @@ void GltfMaterials::phong_of_factors(Material& out) {
     const double alpha = r * r;
     out.shininess =
         static_cast<float>(alpha > 0 ? std::clamp(2 / (alpha * alpha) - 2, 1.0, 1e6) : 1e6);
+}
+
+// KHR_materials_unlit: the colour is the base colour (× its texture, × COLOR_0), unlit and
+// unreflecting; shading reads it as the emission (Material::unlit). A cut-out keeps the base
+// texture's alpha; under BLEND the coverage scales the colour and the rest passes straight on.
+void GltfMaterials::unlit(Material& out) {
+    const MetalRoughInputs& p = *out.metal_rough;
+    out.emission = p.base * p.coverage;
+    out.emission_texture = out.texture;
+    if (out.cut_out && out.alpha_texture == kNoTexture) out.alpha_texture = out.texture;
+    out.texture = kNoTexture;
+    out.ambient = out.diffuse = out.specular = glm::vec3(0.0f);
+    out.reflectivity = 0.0f;
+    out.transmission = 1.0f - p.coverage;
+    out.normal_texture = kNoTexture;
+    out.metal_rough.reset();
+    out.unlit = true;
 }
 
 // Emission (DESIGN §13): emissiveFactor × emissiveStrength, times the emissive texture.

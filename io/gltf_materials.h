@@ -34,6 +34,7 @@ class GltfMaterials {
   private:
     [[noreturn]] void fail(const std::string& place, const std::string& what) const;
     static void phong_of_factors(Material& out);
+    static void unlit(Material& out);
     void emission(const tinygltf::Material& g, const std::string& at, Material& out);
     void alpha_mode(const tinygltf::Material& g, const std::string& at, const std::string& pbr_at,
                     Material& out);

@@ -114,7 +114,10 @@ void TileLighting::cast_shadows(const World& world, std::span<const Hit> hits) {
         };
         for (std::size_t n = 0; n < lit; ++n) {
             const SurfacePoint& surface = surfaces_[n];
-            if (!hits[n].found() || !light_direction(surface, light).in_front()) continue;
+            // An unlit surface casts none (shade() adds no light to it).
+            if (!hits[n].found() || world.material(hits[n].object).unlit ||
+                !light_direction(surface, light).in_front())
+                continue;
             shadow[count] = shadow_ray(surface, light.position);
             skip[count] = surface.skip;
             from[count++] = n;

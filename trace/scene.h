@@ -139,6 +139,10 @@ struct Material {
     // A glTF metallic-roughness material (DESIGN §14): shading derives the Phong colours above
     // from it per texel. The fields above hold them with every texel 1 (the preview's colour).
     std::optional<MetalRoughInputs> metal_rough;
+    // Unlit (glTF's KHR_materials_unlit): the colour is `emission` × `emission_texture`'s texel
+    // (the base colour's, a missing one leaving the factor) × the vertex colours, and no light
+    // or reflection adds to it; every other colour is 0.
+    bool unlit = false;
 };
 
 // Triangles as given (counter-clockwise front), object space.

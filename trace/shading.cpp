@@ -40,13 +40,31 @@ std::optional<TexelSample> texture_at(const World& world, const Texture* texture
     return sample_texture(*texture, mesh_uv(*mesh, hit.primitive, hit.u, hit.v, texture->set));
 }
 
+// A mesh's vertex colour at a hit (glTF's COLOR_0), or none.
+std::optional<Vec3> vertex_colour(const World& world, const Hit& hit) {
+    const Mesh* mesh = world.objects()[hit.object].params.mesh;
+    if (!mesh || mesh->colours.empty()) return std::nullopt;
+    const glm::uvec3 tri = mesh->triangles[hit.primitive];
+    const Real b1 = hit.u, b2 = hit.v, b0 = 1 - b1 - b2;
+    return b0 * Vec3(mesh->colours[tri.x]) + b1 * Vec3(mesh->colours[tri.y]) +
+           b2 * Vec3(mesh->colours[tri.z]);
+}
+
 // The material's emission at a hit (DESIGN §13): its colour × the emission texture's there. An
 // emission texture the mesh cannot read (no coordinates of its set) leaves no emission (§14).
+// An unlit material's colour comes this way too: its base colour, which such a texture leaves as
+// the factor, × the vertex colours.
 Vec3 emission_at(const World& world, const Phong& m, const Hit& hit) {
     if (m.emission == Vec3(0.0_r)) return Vec3(0.0_r);
-    if (!m.emission_texture) return m.emission;
-    const std::optional<TexelSample> texel = texture_at(world, m.emission_texture, hit);
-    return texel ? m.emission * Vec3(texel->colour) : Vec3(0.0_r);
+    Vec3 e = m.emission;
+    if (m.emission_texture) {
+        const std::optional<TexelSample> texel = texture_at(world, m.emission_texture, hit);
+        if (texel) e *= Vec3(texel->colour);
+        else if (!m.unlit) return Vec3(0.0_r);
+    }
+    if (m.unlit)
+        if (const std::optional<Vec3> c = vertex_colour(world, hit)) e *= *c;
+    return e;
 }
 
 // A glTF material's metallic m and roughness r at a hit (DESIGN §14): the factors × the
@@ -125,14 +143,7 @@ namespace {
     out.texel = texture_at(world, m.texture, hit);
     if (out.texel) base = Vec3(out.texel->colour), tinted = true;
     // A mesh's vertex colours multiply the base colour too (glTF's COLOR_0).
-    if (const Mesh* mesh = world.objects()[hit.object].params.mesh;
-        mesh && !mesh->colours.empty()) {
-        const glm::uvec3 tri = mesh->triangles[hit.primitive];
-        const Real b1 = hit.u, b2 = hit.v, b0 = 1 - b1 - b2;
-        base *= b0 * Vec3(mesh->colours[tri.x]) + b1 * Vec3(mesh->colours[tri.y]) +
-                b2 * Vec3(mesh->colours[tri.z]);
-        tinted = true;
-    }
+    if (const std::optional<Vec3> c = vertex_colour(world, hit)) base *= *c, tinted = true;
     if (!m.metal_rough) {
         if (tinted) out.diffuse *= base, out.ambient *= base;
         return out;
@@ -190,7 +201,9 @@ Vec3 shade(const World& world, const Ray& ray, const Hit& hit, const SurfacePoin
     const Vec3 emission = emission_at(world, m, hit);
     Vec3 colour = ambient * world.ambient() + emission;
     if (recorder) recorder->surface(surface, odd, texel, ambient * world.ambient(), emission);
-    for (std::size_t j = 0; j < world.lights().size(); ++j) {
+    // An unlit surface's colour is its emission: no light adds to it.
+    const std::size_t lights = m.unlit ? 0 : world.lights().size();
+    for (std::size_t j = 0; j < lights; ++j) {
         const Light& light = world.lights()[j];
         const auto [l, n_dot_l] = light_direction(surface, light);
         const auto index = static_cast<std::uint32_t>(j);

@@ -80,7 +80,7 @@ void SceneGeometry::prepare_materials(const Scene& scene) {
                              m.reflectivity, m.transmission, m.ior, m.checker.size,
                              Vec3(m.checker.diffuse), Vec3(m.checker.ambient), texture(m.texture),
                              cut_out, Vec3(m.emission), texture(m.emission_texture),
-                             texture(m.normal_texture), m.normal_scale, metal_rough});
+                             texture(m.normal_texture), m.normal_scale, metal_rough, m.unlit});
         transmissive |= m.transmission > 0;
         secondary |= m.reflectivity > 0 || m.transmission > 0;
     }

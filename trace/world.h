@@ -51,6 +51,7 @@ struct Phong {
         const Texture *metal_rough, *occlusion;
     };
     std::optional<MetalRough> metal_rough;
+    bool unlit; // Material::unlit: `emission` is its colour, and no light adds to it
 };
 
 struct Light {
