@@ -177,7 +177,9 @@ std::vector<std::uint32_t> GltfMotion::moving_meshes() const {
 void GltfMotion::pose(Scene& scene, double t) const {
     const std::vector<DMat4> at = world(t);
     for (std::size_t i = 0; i < object_nodes.size() && i < scene.objects.size(); ++i)
-        if (object_nodes[i] != kNoNode) scene.objects[i].transform = at[object_nodes[i]];
+        if (object_nodes[i] != kNoNode)
+            scene.objects[i].transform =
+                object_offsets.empty() ? at[object_nodes[i]] : at[object_nodes[i]] * object_offsets[i];
     deform(scene.meshes, at, t);
     for (std::size_t i = 0; i < light_nodes.size() && i < scene.lights.size(); ++i)
         if (light_nodes[i] < at.size())

@@ -86,6 +86,9 @@ class GltfMotion final : public Animation {
     // camera's node, when the scene looks through one.
     static constexpr std::size_t kNoNode = ~std::size_t{0};
     std::vector<std::size_t> object_nodes, light_nodes;
+    // Per object, its instance's matrix after its node's (EXT_mesh_gpu_instancing, io/
+    // gltf_instances.h); empty where the model has no instances.
+    std::vector<DMat4> object_offsets;
     std::optional<std::size_t> camera_node;
     // The skins and the meshes they and morph targets move; per node, its morph weights as the
     // file gives them (the node's, else its mesh's, else zeros; empty for a node without).

@@ -4,6 +4,7 @@
 #include "io/gltf_accessors.h"
 #include "io/gltf_animation.h"
 #include "io/gltf_container.h"
+#include "io/gltf_instances.h"
 #include "io/gltf_materials.h"
 #include "io/gltf_skin.h"
 #include "io/model_scene.h"
@@ -475,21 +476,39 @@ class Reader {
             const std::vector<Part> parts = skinned || morph_targets(n.mesh) > 0
                                                 ? deformable_parts(k)
                                                 : mesh(n.mesh, at + "/mesh");
-            if (scene_.objects.size() + parts.size() > kMaxModelObjects)
+            // EXT_mesh_gpu_instancing: every instance one more object over the same meshes.
+            std::vector<DMat4> instances = read_instances(n, at, accessors_, kMaxModelObjects);
+            if (skinned && !instances.empty()) {
+                unused("instances of a skinned mesh (drawn once, posed by its skin)",
+                       at + "/extensions/EXT_mesh_gpu_instancing");
+                instances.clear();
+            }
+            const std::size_t copies = std::max<std::size_t>(instances.size(), 1);
+            if (scene_.objects.size() + parts.size() * copies > kMaxModelObjects)
                 fail(at, "the model places more than " + std::to_string(kMaxModelObjects) +
                              " objects");
-            const std::string& mesh_name = m_.meshes[static_cast<std::size_t>(n.mesh)].name;
-            for (const Part& part : parts) {
-                SceneObject o;
-                o.shape = ShapeKind::mesh;
-                o.mesh = part.mesh;
-                o.material = part.material;
-                o.transform = skinned ? DMat4(1.0) : world;
-                scene_.objects.push_back(o);
-                rest_transforms_.push_back(skinned ? DMat4(1.0) : rest);
-                if (motion_) motion_->object_nodes.push_back(skinned ? GltfMotion::kNoNode : k);
-                scene_.object_names.push_back(printable(n.name.empty() ? mesh_name : n.name));
-                object_places_.push_back(at);
+            if (motion_ && !instances.empty() && motion_->object_offsets.empty())
+                motion_->object_offsets.assign(scene_.objects.size(), DMat4(1.0));
+            const std::string name =
+                printable(n.name.empty() ? m_.meshes[static_cast<std::size_t>(n.mesh)].name : n.name);
+            for (std::size_t c = 0; c < copies; ++c) {
+                const DMat4 instance = instances.empty() ? DMat4(1.0) : instances[c];
+                for (const Part& part : parts) {
+                    SceneObject o;
+                    o.shape = ShapeKind::mesh;
+                    o.mesh = part.mesh;
+                    o.material = part.material;
+                    o.transform = skinned ? DMat4(1.0) : world * instance;
+                    scene_.objects.push_back(o);
+                    rest_transforms_.push_back(skinned ? DMat4(1.0) : rest * instance);
+                    if (motion_) {
+                        motion_->object_nodes.push_back(skinned ? GltfMotion::kNoNode : k);
+                        if (!motion_->object_offsets.empty())
+                            motion_->object_offsets.push_back(instance);
+                    }
+                    scene_.object_names.push_back(name);
+                    object_places_.push_back(at);
+                }
             }
         }
         if (n.camera >= 0) {
@@ -563,8 +582,9 @@ class Reader {
                 // A point light far along the direction it comes from: 100 radii from the model.
                 unused("directional lights (placed as point lights 100 model radii away)", at);
                 DVec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+                UnitBoxes unit_boxes(scene_.meshes);
                 for (const SceneObject& o : scene_.objects)
-                    if (const std::optional<ObjectBox> box = unit_box(o, scene_.meshes)) {
+                    if (const std::optional<ObjectBox> box = unit_boxes(o)) {
                         const auto [a, b] = transformed_box(*box, o.transform);
                         lo = glm::min(lo, a), hi = glm::max(hi, b);
                     }

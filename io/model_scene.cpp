@@ -13,24 +13,71 @@ namespace glint {
 
 std::optional<ModelSphere> model_sphere(const std::vector<SceneObject>& objects,
                                         const std::vector<TriangleMesh>& meshes) {
-    DVec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
-    const auto each_point = [&](const auto& visit) {
-        for (const SceneObject& o : objects) {
-            if (o.shape == ShapeKind::mesh || o.shape == ShapeKind::triangle) {
-                for (const glm::vec3& v : meshes[o.mesh].vertices)
-                    visit(DVec3(o.transform * glm::dvec4(DVec3(v), 1.0)));
-            } else if (const std::optional<ObjectBox> box = unit_box(o, meshes)) {
-                const auto [a, b] = transformed_box(*box, o.transform);
-                for (int k = 0; k < 8; ++k)
-                    visit(DVec3(k & 1 ? b.x : a.x, k & 2 ? b.y : a.y, k & 4 ? b.z : a.z));
-            }
+    // Each object's placed box bounds its points: a mesh whose box cannot change the answer is
+    // skipped, so that 10⁴ instances of a large mesh do not each walk every vertex. The answer is
+    // exactly the one every vertex gives (min, max and the largest distance are exact in any
+    // order).
+    struct Placed {
+        const SceneObject* object;
+        DVec3 lo, hi;
+        bool vertices; // a mesh or triangle: its points are its vertices, not its box's corners
+    };
+    std::vector<Placed> placed;
+    UnitBoxes unit_boxes(meshes);
+    for (const SceneObject& o : objects)
+        if (const std::optional<ObjectBox> box = unit_boxes(o)) {
+            const auto [a, b] = transformed_box(*box, o.transform);
+            const bool vertices = o.shape == ShapeKind::mesh || o.shape == ShapeKind::triangle;
+            // A vertex placed by the transform may round an ulp beyond the box of the placed
+            // corners: the box that decides skipping is widened well past that.
+            const DVec3 pad = vertices ? 1e-9 * (glm::max(glm::abs(a), glm::abs(b)) + (b - a)) : DVec3(0);
+            placed.push_back({&o, a - pad, b + pad, vertices});
+        }
+    if (placed.empty()) return std::nullopt;
+    const auto each_point = [&](const Placed& p, const auto& visit) {
+        if (p.vertices) {
+            for (const glm::vec3& v : meshes[p.object->mesh].vertices)
+                visit(DVec3(p.object->transform * glm::dvec4(DVec3(v), 1.0)));
+        } else {
+            for (int k = 0; k < 8; ++k)
+                visit(DVec3(k & 1 ? p.hi.x : p.lo.x, k & 2 ? p.hi.y : p.lo.y, k & 4 ? p.hi.z : p.lo.z));
         }
     };
-    each_point([&](DVec3 p) { lo = glm::min(lo, p), hi = glm::max(hi, p); });
+    // The box of every point: the objects whose boxes reach farthest along each axis first, then
+    // every object whose box is not inside the box found so far.
+    DVec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+    const auto grow = [&](DVec3 p) { lo = glm::min(lo, p), hi = glm::max(hi, p); };
+    for (int axis = 0; axis < 3; ++axis) {
+        each_point(*std::min_element(placed.begin(), placed.end(),
+                                     [&](const Placed& a, const Placed& b) {
+                                         return a.lo[axis] < b.lo[axis];
+                                     }),
+                   grow);
+        each_point(*std::max_element(placed.begin(), placed.end(),
+                                     [&](const Placed& a, const Placed& b) {
+                                         return a.hi[axis] < b.hi[axis];
+                                     }),
+                   grow);
+    }
+    for (const Placed& p : placed)
+        if (!(glm::all(glm::greaterThanEqual(p.lo, lo)) && glm::all(glm::lessThanEqual(p.hi, hi))))
+            each_point(p, grow);
     if (!(lo.x <= hi.x)) return std::nullopt;
     const DVec3 centre = 0.5 * (lo + hi);
+    // The farthest point: objects by their box's farthest corner, nearest last, until no box
+    // reaches beyond the distance found.
+    const auto reach = [&](const Placed& p) {
+        return glm::length(glm::max(glm::abs(p.lo - centre), glm::abs(p.hi - centre)));
+    };
+    std::vector<std::pair<double, const Placed*>> order;
+    for (const Placed& p : placed) order.emplace_back(reach(p), &p);
+    std::sort(order.begin(), order.end(),
+              [](const auto& a, const auto& b) { return a.first > b.first; });
     double radius = 0;
-    each_point([&](DVec3 p) { radius = std::max(radius, glm::length(p - centre)); });
+    for (const auto& [far, p] : order) {
+        if (far <= radius) break;
+        each_point(*p, [&](DVec3 q) { radius = std::max(radius, glm::length(q - centre)); });
+    }
     return ModelSphere{centre, radius};
 }
 

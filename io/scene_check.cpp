@@ -129,7 +129,8 @@ class Check {
         }
     }
 
-    void object(const std::string& path, const SceneObject& o, const Scene& scene) const {
+    void object(const std::string& path, const SceneObject& o, const Scene& scene,
+                UnitBoxes& unit_boxes) const {
         if (o.material >= scene.materials.size()) fail(path + "/material", "no such material");
         const ShapeTraits& traits = shape_traits(o.shape);
         if (traits.keys.vertices) {
@@ -147,7 +148,7 @@ class Check {
         if (const auto why = why_unusable(o.transform)) fail(path + "/transform", *why);
         // Every point of a placed object, not only its position, must be a position (a mesh
         // vertex of 1e15 scaled by 1e15 is not).
-        if (const std::optional<ObjectBox> box = unit_box(o, scene.meshes)) {
+        if (const std::optional<ObjectBox> box = unit_boxes(o)) {
             const auto [lo, hi] = transformed_box(*box, o.transform);
             const DVec3 far = glm::max(glm::abs(lo), glm::abs(hi));
             const double reach = std::max({far.x, far.y, far.z});
@@ -173,8 +174,9 @@ void check_scene(const Scene& scene, const ScenePlaces& places) {
     // the camera or light derived from it.
     for (std::size_t m = 0; m < scene.meshes.size(); ++m)
         check.mesh("meshes/" + std::to_string(m), scene.meshes[m]);
+    UnitBoxes unit_boxes(scene.meshes);
     for (std::size_t o = 0; o < scene.objects.size(); ++o)
-        check.object("objects/" + std::to_string(o), scene.objects[o], scene);
+        check.object("objects/" + std::to_string(o), scene.objects[o], scene, unit_boxes);
     check.camera(scene.camera);
     check.colour("background", scene.background);
     check.colour("ambient", scene.ambient);

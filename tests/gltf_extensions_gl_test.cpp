@@ -1,6 +1,9 @@
 // glTF extensions of issue 73, each on a small file made here and rendered in ray and hybrid mode
-// (the same bytes in both): KHR_materials_unlit.
+// (the same bytes in both): KHR_materials_unlit and EXT_mesh_gpu_instancing.
 #include "gltf_scenes.h"
+
+#include "io/error.h"
+#include "trace/names.h"
 
 #include <gtest/gtest.h>
 
@@ -49,6 +52,97 @@ TEST(GltfExtensions, AnUnlitMaterialIsItsBaseColour) {
     EXPECT_NEAR(tinted.x, 26, 1);
     EXPECT_NEAR(tinted.y, 26, 1);
     EXPECT_NEAR(tinted.z, 77, 1);
+}
+
+// Seven instances of two meshes (EXT_mesh_gpu_instancing) under a moved and turned node: each
+// instance's TRS after the node's matrix.
+struct Instances {
+    std::vector<float> translation = {-2, 0, 0, -1, 1, 0, 0, -1, 0.5f, 1, 0, -0.5f,
+                                      2, 1, 0, 0, 0, -2, -1.5f, -1, 1};
+    std::vector<float> rotation = {0, 0, 0, 1, 0, 0, 0.3826834f, 0.9238795f, 0.5f, 0.5f, 0.5f, 0.5f,
+                                   0, 1, 0, 0, 0, 0, 0, 1, 0.7071068f, 0, 0, 0.7071068f, 0, 0, 0, 1};
+    std::vector<float> scale = {1, 1, 1, 0.5f, 0.5f, 0.5f, 1, 2, 1, 0.7f, 0.7f, 0.7f,
+                                1, 1, 1, 1.5f, 1, 0.5f, -1, 1, 1};
+    json node = {{"translation", {0.3, -0.2, 0}}, {"rotation", {0, 0.2588190, 0, 0.9659258}}};
+
+    // The two meshes' file: one node with the extension, or (`separate`) its instances written
+    // as child nodes of the same node.
+    std::string file(bool separate) const {
+        GltfBuilder b;
+        b.doc["materials"].push_back({{"pbrMetallicRoughness", {{"metallicFactor", 0.0}}}});
+        const int mesh = quad(b, 0);
+        b.doc["meshes"][mesh]["primitives"].push_back(b.doc["meshes"][mesh]["primitives"][0]);
+        b.doc["meshes"][mesh]["primitives"][1]["attributes"]["POSITION"] =
+            b.floats({-0.5f, -0.5f, 0.3f, 0.5f, -0.5f, 0.3f, 0.5f, 0.5f, 0.6f, -0.5f, 0.5f, 0.6f}, "VEC3", 3);
+        json parent = node;
+        if (!separate) {
+            parent["mesh"] = mesh;
+            parent["extensions"]["EXT_mesh_gpu_instancing"]["attributes"] = {
+                {"TRANSLATION", b.floats(translation, "VEC3", 3)},
+                {"ROTATION", b.floats(rotation, "VEC4", 4)},
+                {"SCALE", b.floats(scale, "VEC3", 3)}};
+            b.doc["extensionsUsed"] = {"EXT_mesh_gpu_instancing"};
+            b.node(parent);
+        } else {
+            json children = json::array();
+            for (std::size_t i = 0; i < translation.size() / 3; ++i)
+                children.push_back(b.node(
+                    {{"mesh", mesh},
+                     {"translation", {translation[3 * i], translation[3 * i + 1], translation[3 * i + 2]}},
+                     {"rotation", {rotation[4 * i], rotation[4 * i + 1], rotation[4 * i + 2], rotation[4 * i + 3]}},
+                     {"scale", {scale[3 * i], scale[3 * i + 1], scale[3 * i + 2]}}},
+                    false));
+            parent["children"] = children;
+            b.node(parent);
+        }
+        b.doc["cameras"].push_back(
+            {{"type", "perspective"}, {"perspective", {{"yfov", 1.0}, {"znear", 0.1}}}});
+        b.node({{"camera", 0}, {"translation", {0, 0, 6}}});
+        light_at(b, {2, 3, 5});
+        return b.gltf();
+    }
+};
+
+// The instances' hits are those of the same scene written as separate nodes: every structure,
+// both modes, the same bytes; and the instances share one copy of the meshes.
+TEST(GltfExtensions, InstancesHitAsTheSameSceneWrittenAsSeparateNodes) {
+    const Instances instances;
+    ModelOptions options;
+    options.size = std::pair{48, 40};
+    const Scene shared = parse_gltf(instances.file(false), "instanced.gltf", {}, options);
+    const Scene separate = parse_gltf(instances.file(true), "separate.gltf", {}, options);
+    ASSERT_EQ(shared.objects.size(), 14u); // 7 instances × 2 primitives
+    ASSERT_EQ(separate.objects.size(), 14u);
+    EXPECT_EQ(shared.meshes.size(), 2u) << "instances share their meshes";
+    for (std::size_t i = 0; i < shared.objects.size(); ++i)
+        EXPECT_EQ(shared.objects[i].transform, separate.objects[i].transform) << "object " << i;
+    for (const AccelKind accel : {AccelKind::list, AccelKind::bvh, AccelKind::spheres,
+                                  AccelKind::grid, AccelKind::kd, AccelKind::bvh2})
+        for (const Mode mode : {Mode::ray, Mode::hybrid}) {
+            FrameSettings settings;
+            settings.mode = mode;
+            const Image a = render_frame(shared, accel, settings).result.bytes();
+            const Image b = render_frame(separate, accel, settings).result.bytes();
+            EXPECT_TRUE(a.rgb == b.rgb) << name_of(accel) << " " << (mode == Mode::ray ? "ray" : "hybrid");
+            EXPECT_GT(std::count_if(a.rgb.begin(), a.rgb.end(), [](std::uint8_t v) { return v > 0; }), 300)
+                << "the instances show";
+        }
+}
+
+// An instance attribute of another count than the others' is refused, naming it.
+TEST(GltfExtensions, InstanceAttributesOfAnotherCountAreRefused) {
+    Instances instances;
+    instances.scale.resize(instances.scale.size() - 3);
+    try {
+        parse_gltf(instances.file(false), "instanced.gltf", {}, {});
+        ADD_FAILURE() << "accepted";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find(
+                      "instanced.gltf: /nodes/0/extensions/EXT_mesh_gpu_instancing/attributes/"
+                      "SCALE: 6 instances, where TRANSLATION has 7"),
+                  std::string::npos)
+            << e.what();
+    }
 }
 
 } // namespace

@@ -8,13 +8,16 @@
 
 #include "io/error.h"
 #include "io/gltf_loader.h"
+#include "io/model_scene.h"
 #include "io/png.h"
 #include "trace/image.h"
+#include "trace/shapes/table.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <fstream>
+#include <random>
 #include <sstream>
 #include <sys/wait.h>
 
@@ -48,6 +51,52 @@ Image texel_grid() {
 // The shipped meshes, with no scene: the framing rule puts the model in the middle of the
 // frame, covering a fair part of it (at least a sixth of the pixels, and half the height or
 // width), and the default lights light it (no pixel of it black).
+// model_sphere skips the objects whose placed box cannot change its answer (instances of a large
+// mesh): on scenes of shared, randomly placed meshes and boxes its answer is, to the bit, the one
+// every vertex and every box corner gives.
+TEST(Model, TheModelSphereIsTheOneEveryPointGives) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-1, 1);
+    for (int round = 0; round < 20; ++round) {
+        std::vector<TriangleMesh> meshes(3);
+        for (TriangleMesh& m : meshes) {
+            for (int v = 0; v < 50; ++v)
+                m.vertices.emplace_back(u(rng), u(rng) * 0.3, u(rng) * 2);
+            m.triangles.push_back({0, 1, 2});
+        }
+        std::vector<SceneObject> objects;
+        for (int k = 0; k < 200; ++k) {
+            SceneObject o;
+            o.shape = k % 7 == 0 ? ShapeKind::box : ShapeKind::mesh;
+            o.mesh = static_cast<std::uint32_t>(k % 3);
+            o.transform = translation_matrix({10 * u(rng), 3 * u(rng), 10 * u(rng)}) *
+                          rotation_matrix({u(rng), u(rng), u(rng) + 2}, 180 * u(rng)) *
+                          scale_matrix(DVec3(1 + 0.5 * u(rng)));
+            objects.push_back(o);
+        }
+        // Every point, written out again.
+        std::vector<DVec3> points;
+        for (const SceneObject& o : objects)
+            if (o.shape == ShapeKind::mesh) {
+                for (const glm::vec3& v : meshes[o.mesh].vertices)
+                    points.push_back(DVec3(o.transform * glm::dvec4(DVec3(v), 1.0)));
+            } else {
+                const auto [a, b] = transformed_box(*unit_box(o, meshes), o.transform);
+                for (int k = 0; k < 8; ++k)
+                    points.emplace_back(k & 1 ? b.x : a.x, k & 2 ? b.y : a.y, k & 4 ? b.z : a.z);
+            }
+        DVec3 lo(points[0]), hi(points[0]);
+        for (const DVec3& p : points) lo = glm::min(lo, p), hi = glm::max(hi, p);
+        const DVec3 centre = 0.5 * (lo + hi);
+        double radius = 0;
+        for (const DVec3& p : points) radius = std::max(radius, glm::length(p - centre));
+        const std::optional<ModelSphere> sphere = model_sphere(objects, meshes);
+        ASSERT_TRUE(sphere);
+        EXPECT_EQ(sphere->centre, centre) << "round " << round;
+        EXPECT_EQ(sphere->radius, radius) << "round " << round;
+    }
+}
+
 TEST(Model, AnObjWithNoSceneIsFramedToFillAFairPartOfTheImage) {
     const fs::path dir = fresh_dir();
     for (const char* mesh : {"geosphere", "star"}) {

@@ -93,9 +93,10 @@ World::World(const Scene& scene, std::shared_ptr<const SceneGeometry> geometry, 
     // its distance from the world origin (docs/ARCHITECTURE.md, "Conventions": transforms).
     const DMat4 to_camera = translation_matrix(-scene.camera.eye);
     objects_.reserve(scene.objects.size());
+    UnitBoxes unit_boxes(scene.meshes);
     for (const SceneObject& o : scene.objects) {
         const DMat4 m = to_camera * o.transform;
-        const std::optional<ObjectBox> box = unit_box(o, scene.meshes);
+        const std::optional<ObjectBox> box = unit_boxes(o);
         // The shapes given by vertices are the ones with a mesh (SceneObject::mesh), and the
         // ones a material can cut out (their triangles have texture coordinates).
         const bool triangles = shape_traits(o.shape).keys.vertices;

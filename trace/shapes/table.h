@@ -97,6 +97,25 @@ inline std::optional<ObjectBox> unit_box(const SceneObject& object,
     });
 }
 
+// Objects' unit boxes where many objects may place one mesh (instances): each mesh's box is
+// found once, on first use, rather than from all its vertices for every object that places it.
+class UnitBoxes {
+  public:
+    explicit UnitBoxes(const std::vector<TriangleMesh>& meshes)
+        : meshes_(meshes), mesh_boxes_(meshes.size()) {}
+    std::optional<ObjectBox> operator()(const SceneObject& object) {
+        if (object.shape != ShapeKind::mesh || object.mesh >= mesh_boxes_.size())
+            return unit_box(object, meshes_);
+        std::optional<ObjectBox>& box = mesh_boxes_[object.mesh];
+        if (!box) box = unit_box(object, meshes_);
+        return box;
+    }
+
+  private:
+    const std::vector<TriangleMesh>& meshes_;
+    std::vector<std::optional<ObjectBox>> mesh_boxes_;
+};
+
 // The conservative tessellation of a tessellated shape (RasterAs::tessellated) at `n` segments
 // around each curved outline; empty for the others.
 inline Tessellation tessellate_shape(ShapeKind kind, float top_radius, bool open, int n) {
