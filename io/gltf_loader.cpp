@@ -25,6 +25,16 @@ namespace {
 // Objects a model may place (nodes × primitives): beyond, a small file would fill the memory.
 constexpr std::size_t kMaxModelObjects = std::size_t{1} << 22;
 
+// The component types of positions and texture coordinates, and of normals and tangents: float,
+// and KHR_mesh_quantization's integers (positions and coordinates plain or normalized, as the
+// accessor says; directions normalized, their length restored on reading).
+constexpr std::initializer_list<int> kPositionTypes = {
+    TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
+    TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT,
+    TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT};
+constexpr std::initializer_list<int> kDirectionTypes = {
+    TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT};
+
 // glint's reading of a parsed model: its accessors checked and read, its node tree walked into
 // placed meshes, its materials mapped to Phong (docs/SCENES.md, "glTF").
 class Reader {
@@ -126,7 +136,7 @@ class Reader {
         const std::string positions_at = at + "/attributes/POSITION";
         const std::vector<double> xyz =
             accessors_.read_accessor(attribute("POSITION"), TINYGLTF_TYPE_VEC3, 3,
-                          {TINYGLTF_COMPONENT_TYPE_FLOAT}, positions_at, kMaxMeshVertices);
+                          kPositionTypes, positions_at, kMaxMeshVertices);
         const std::size_t n = xyz.size() / 3;
         TriangleMesh mesh;
         mesh.vertices.reserve(n);
@@ -137,7 +147,7 @@ class Reader {
         if (attribute("NORMAL") >= 0) {
             const std::vector<double> normals =
                 accessors_.read_accessor(attribute("NORMAL"), TINYGLTF_TYPE_VEC3, 3,
-                              {TINYGLTF_COMPONENT_TYPE_FLOAT}, at + "/attributes/NORMAL", n);
+                              kDirectionTypes, at + "/attributes/NORMAL", n);
             if (normals.size() != xyz.size())
                 fail(at + "/attributes/NORMAL", "has a count other than POSITION's");
             for (std::size_t i = 0; i < n; ++i) {
@@ -154,9 +164,7 @@ class Reader {
             const std::string uv_at = at + "/attributes/" + key;
             const std::vector<double> uv = accessors_.read_accessor(
                 attribute(key), TINYGLTF_TYPE_VEC2, 2,
-                {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-                 TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
-                uv_at, n);
+                kPositionTypes, uv_at, n);
             if (uv.size() != 2 * n) fail(uv_at, "has a count other than POSITION's");
             for (std::size_t i = 0; i < n; ++i) uvs->emplace_back(uv[2 * i], uv[2 * i + 1]);
         }
@@ -188,7 +196,7 @@ class Reader {
         if (attribute("TANGENT") >= 0) {
             const std::vector<double> t =
                 accessors_.read_accessor(attribute("TANGENT"), TINYGLTF_TYPE_VEC4, 4,
-                              {TINYGLTF_COMPONENT_TYPE_FLOAT}, at + "/attributes/TANGENT", n);
+                              kDirectionTypes, at + "/attributes/TANGENT", n);
             if (t.size() != 4 * n) fail(at + "/attributes/TANGENT", "has a count other than POSITION's");
             for (std::size_t i = 0; i < n; ++i) {
                 const glm::dvec3 v(t[4 * i], t[4 * i + 1], t[4 * i + 2]);
