@@ -13,10 +13,14 @@ namespace glint {
 
 std::optional<ModelSphere> model_sphere(const std::vector<SceneObject>& objects,
                                         const std::vector<TriangleMesh>& meshes) {
-    // Each object's placed box bounds its points: a mesh whose box cannot change the answer is
+    // Each object's placed box bounds its points: an object whose box cannot change the answer is
     // skipped, so that 10⁴ instances of a large mesh do not each walk every vertex. The answer is
-    // exactly the one every vertex gives (min, max and the largest distance are exact in any
-    // order).
+    // to the bit the one every vertex gives. A mesh's box is its object box's eight corners
+    // placed by the same arithmetic as its vertices (`place`): rounding is monotonic in each
+    // coordinate, and fixed-order sums of monotonic terms are too (the build turns off
+    // contraction into fused multiply-adds), so no placed vertex lies beyond the placed corners;
+    // the same holds for `distance`.
+    const auto place = [](const DMat4& m, DVec3 p) { return DVec3(m * glm::dvec4(p, 1.0)); };
     struct Placed {
         const SceneObject* object;
         DVec3 lo, hi;
@@ -24,20 +28,29 @@ std::optional<ModelSphere> model_sphere(const std::vector<SceneObject>& objects,
     };
     std::vector<Placed> placed;
     UnitBoxes unit_boxes(meshes);
-    for (const SceneObject& o : objects)
-        if (const std::optional<ObjectBox> box = unit_boxes(o)) {
-            const auto [a, b] = transformed_box(*box, o.transform);
-            const bool vertices = o.shape == ShapeKind::mesh || o.shape == ShapeKind::triangle;
-            // A vertex placed by the transform may round an ulp beyond the box of the placed
-            // corners: the box that decides skipping is widened well past that.
-            const DVec3 pad = vertices ? 1e-9 * (glm::max(glm::abs(a), glm::abs(b)) + (b - a)) : DVec3(0);
-            placed.push_back({&o, a - pad, b + pad, vertices});
+    for (const SceneObject& o : objects) {
+        const std::optional<ObjectBox> box = unit_boxes(o);
+        if (!box) continue;
+        const bool vertices = o.shape == ShapeKind::mesh || o.shape == ShapeKind::triangle;
+        Placed p{&o, DVec3(0), DVec3(0), vertices};
+        if (vertices) {
+            p.lo = DVec3(std::numeric_limits<double>::infinity()), p.hi = -p.lo;
+            for (int k = 0; k < 8; ++k) {
+                const DVec3 c = place(o.transform, {k & 1 ? box->second.x : box->first.x,
+                                                    k & 2 ? box->second.y : box->first.y,
+                                                    k & 4 ? box->second.z : box->first.z});
+                p.lo = glm::min(p.lo, c), p.hi = glm::max(p.hi, c);
+            }
+        } else {
+            std::tie(p.lo, p.hi) = transformed_box(*box, o.transform);
         }
+        placed.push_back(p);
+    }
     if (placed.empty()) return std::nullopt;
     const auto each_point = [&](const Placed& p, const auto& visit) {
         if (p.vertices) {
             for (const glm::vec3& v : meshes[p.object->mesh].vertices)
-                visit(DVec3(p.object->transform * glm::dvec4(DVec3(v), 1.0)));
+                visit(place(p.object->transform, DVec3(v)));
         } else {
             for (int k = 0; k < 8; ++k)
                 visit(DVec3(k & 1 ? p.hi.x : p.lo.x, k & 2 ? p.hi.y : p.lo.y, k & 4 ? p.hi.z : p.lo.z));
@@ -64,10 +77,14 @@ std::optional<ModelSphere> model_sphere(const std::vector<SceneObject>& objects,
             each_point(p, grow);
     if (!(lo.x <= hi.x)) return std::nullopt;
     const DVec3 centre = 0.5 * (lo + hi);
-    // The farthest point: objects by their box's farthest corner, nearest last, until no box
+    const auto distance = [&](DVec3 p) { return glm::length(p - centre); };
+    // The farthest point: objects by their box's farthest corner, farthest first, until no box
     // reaches beyond the distance found.
     const auto reach = [&](const Placed& p) {
-        return glm::length(glm::max(glm::abs(p.lo - centre), glm::abs(p.hi - centre)));
+        DVec3 corner;
+        for (int a = 0; a < 3; ++a)
+            corner[a] = std::abs(p.lo[a] - centre[a]) >= std::abs(p.hi[a] - centre[a]) ? p.lo[a] : p.hi[a];
+        return distance(corner);
     };
     std::vector<std::pair<double, const Placed*>> order;
     for (const Placed& p : placed) order.emplace_back(reach(p), &p);
@@ -76,7 +93,7 @@ std::optional<ModelSphere> model_sphere(const std::vector<SceneObject>& objects,
     double radius = 0;
     for (const auto& [far, p] : order) {
         if (far <= radius) break;
-        each_point(*p, [&](DVec3 q) { radius = std::max(radius, glm::length(q - centre)); });
+        each_point(*p, [&](DVec3 q) { radius = std::max(radius, distance(q)); });
     }
     return ModelSphere{centre, radius};
 }
