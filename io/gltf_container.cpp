@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cstring>
 #include <map>
@@ -39,7 +40,7 @@ bool is_data_uri(const std::string& uri) {
 const std::set<std::string> kKnownExtensions = {
     "KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior",
     "KHR_materials_emissive_strength", "KHR_texture_transform", "KHR_materials_unlit",
-    "EXT_mesh_gpu_instancing", "KHR_mesh_quantization"};
+    "EXT_mesh_gpu_instancing", "KHR_mesh_quantization", "KHR_draco_mesh_compression"};
 
 namespace {
 
@@ -79,6 +80,7 @@ class Precheck {
     std::map<std::string, std::vector<unsigned char>> run(bool& glb, std::vector<std::string>& warnings) {
         glb = bytes_.size() >= 4 && le32(bytes_, 0) == kGlbMagic;
         std::string text = glb ? glb_json() : bytes_;
+        if (glb) glb_json_length_ = le32(bytes_, 12);
         check_json_nesting(text, name_, kMaxGltfJsonDepth);
         try {
             root_ = json::parse(text);
@@ -88,6 +90,7 @@ class Precheck {
         if (!root_.is_object()) fail("/", "a glTF file is a JSON object");
         version();
         extensions(warnings);
+        compressed();
         std::map<std::string, std::vector<unsigned char>> files;
         const json& buffers = array("buffers");
         for (std::size_t b = 0; b < buffers.size(); ++b) buffer(b, buffers[b], files);
@@ -98,9 +101,74 @@ class Precheck {
         return files;
     }
 
+    // The bytes tinygltf parses: the file's, or where compressed() left parts out, the JSON
+    // without them (in a GLB, beside the file's BIN chunk).
+    std::string parsed_bytes() const {
+        if (!rewritten_) return bytes_;
+        std::string text = root_.dump();
+        if (!glb_json_length_) return text;
+        while (text.size() % 4) text += ' ';
+        const std::string bin = bytes_.substr(20 + *glb_json_length_);
+        std::string out = "glTF";
+        const auto u32 = [&](std::uint64_t v) {
+            for (int i = 0; i < 4; ++i) out += static_cast<char>((v >> (8 * i)) & 0xff);
+        };
+        u32(2);
+        u32(20 + text.size() + bin.size());
+        u32(text.size());
+        u32(kJsonChunk);
+        return out + text + bin;
+    }
+
+    // What compressed() left out, put back into the parsed model.
+    void restore(tinygltf::Model& model) const {
+        for (const auto& [mesh, primitive, indices] : draco_indices_)
+            model.meshes.at(mesh).primitives.at(primitive).indices = static_cast<int>(indices);
+    }
+
   private:
     [[noreturn]] void fail(const std::string& place, const std::string& what) const {
         throw SceneError(name_ + ": " + (place.empty() ? "" : place + ": ") + what);
+    }
+
+    // Compressed files hold parts without bytes that tinygltf refuses: a Draco primitive's
+    // indices accessor (no buffer view until decode_draco fills it) and EXT_meshopt_compression's
+    // fallback buffers (no uri: decode_meshopt fills the views over them). The JSON tinygltf
+    // parses leaves the indices out (restore() puts them back) and gives each fallback buffer one
+    // byte of its own.
+    void compressed() {
+        const json& meshes = array("meshes");
+        for (std::size_t m = 0; m < meshes.size(); ++m) {
+            if (!meshes[m].is_object() || !meshes[m].contains("primitives") ||
+                !meshes[m]["primitives"].is_array())
+                continue;
+            const json& primitives = meshes[m]["primitives"];
+            for (std::size_t p = 0; p < primitives.size(); ++p) {
+                const json& primitive = primitives[p];
+                if (!primitive.is_object() || !primitive.contains("indices") ||
+                    !primitive["indices"].is_number_unsigned() ||
+                    !primitive.contains("extensions") || !primitive["extensions"].is_object() ||
+                    !primitive["extensions"].contains("KHR_draco_mesh_compression"))
+                    continue;
+                draco_indices_.push_back({m, p, primitive["indices"].get<std::size_t>()});
+                root_["meshes"][m]["primitives"][p].erase("indices");
+                rewritten_ = true;
+            }
+        }
+        const json& buffers = array("buffers");
+        for (std::size_t b = 0; b < buffers.size(); ++b) {
+            const json& buffer = buffers[b];
+            if (!buffer.is_object() || buffer.contains("uri") || !buffer.contains("extensions") ||
+                !buffer["extensions"].is_object())
+                continue;
+            const auto meshopt = buffer["extensions"].find("EXT_meshopt_compression");
+            if (meshopt == buffer["extensions"].end() || !meshopt->is_object() ||
+                meshopt->value("fallback", false) != true)
+                continue;
+            root_["buffers"][b]["uri"] = "data:application/octet-stream;base64,AA==";
+            root_["buffers"][b]["byteLength"] = 1;
+            rewritten_ = true;
+        }
     }
 
     const json& array(const char* key) const {
@@ -237,6 +305,9 @@ class Precheck {
     const std::string& name_;
     const ModelFiles& files_;
     json root_;
+    bool rewritten_ = false;
+    std::vector<std::array<std::size_t, 3>> draco_indices_; // mesh, primitive, indices accessor
+    std::optional<std::uint64_t> glb_json_length_;
     mutable std::optional<std::uint64_t> bin_length_;
     mutable std::vector<std::uint64_t> byte_lengths_;
 };
@@ -276,8 +347,9 @@ bool write_nothing(std::string* err, const std::string&, const std::vector<unsig
 tinygltf::Model read_gltf_container(const std::string& bytes, const std::string& name,
                                     const ModelFiles& files, std::vector<std::string>& warnings) {
     bool glb = false;
-    std::map<std::string, std::vector<unsigned char>> external =
-        Precheck(bytes, name, files).run(glb, warnings);
+    Precheck precheck(bytes, name, files);
+    std::map<std::string, std::vector<unsigned char>> external = precheck.run(glb, warnings);
+    const std::string parsed = precheck.parsed_bytes();
     tinygltf::Model model;
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(keep_image_bytes, nullptr);
@@ -285,11 +357,11 @@ tinygltf::Model read_gltf_container(const std::string& bytes, const std::string&
     std::string err, warn;
     bool ok = false;
     try {
-        const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+        const auto* data = reinterpret_cast<const unsigned char*>(parsed.data());
         ok = glb ? loader.LoadBinaryFromMemory(&model, &err, &warn, data,
-                                               static_cast<unsigned>(bytes.size()), "")
-                 : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(),
-                                              static_cast<unsigned>(bytes.size()), "");
+                                               static_cast<unsigned>(parsed.size()), "")
+                 : loader.LoadASCIIFromString(&model, &err, &warn, parsed.data(),
+                                              static_cast<unsigned>(parsed.size()), "");
     } catch (const std::exception& e) {
         err = e.what();
         ok = false;
@@ -299,6 +371,7 @@ tinygltf::Model read_gltf_container(const std::string& bytes, const std::string&
         throw SceneError(name + ": not a glTF 2.0 file glint can read: " +
                          printable(first.empty() ? "tinygltf gave no reason" : first, 200));
     }
+    precheck.restore(model);
     return model;
 }
 

@@ -4,6 +4,7 @@
 #include "io/gltf_accessors.h"
 #include "io/gltf_animation.h"
 #include "io/gltf_container.h"
+#include "io/gltf_decoders.h"
 #include "io/gltf_instances.h"
 #include "io/gltf_materials.h"
 #include "io/gltf_skin.h"
@@ -696,6 +697,7 @@ Scene parse_gltf(const std::string& bytes, const std::string& name, const ModelF
                  const ModelOptions& options) {
     std::vector<std::string> warnings;
     tinygltf::Model model = read_gltf_container(bytes, name, files, warnings);
+    decode_draco(model, name);
     return Reader(model, name, files, options, std::move(warnings)).read();
 }
 

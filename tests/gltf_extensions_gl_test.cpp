@@ -34,10 +34,7 @@ TEST(GltfExtensions, AnUnlitMaterialIsItsBaseColour) {
                          "VEC3", 3);
         b.node({{"mesh", mesh}});
         camera_on_z(b);
-        if (lit) {
-            light_at(b, {0, 0, 4});
-            b.doc["extensionsUsed"].push_back("KHR_lights_punctual");
-        }
+        if (lit) light_at(b, {0, 0, 4});
         return read(b);
     };
     const Scene lit = scene(true, false);
@@ -146,78 +143,26 @@ TEST(GltfExtensions, InstanceAttributesOfAnotherCountAreRefused) {
     }
 }
 
-// An accessor of integers of type T (`component`: the glTF component type), normalized or not.
-template <class T>
-int integers(GltfBuilder& b, const std::vector<T>& values, int component, const char* type,
-             int width, bool normalized) {
-    const int v = b.view(values.data(), values.size() * sizeof(T));
-    b.doc["accessors"].push_back({{"bufferView", v},
-                                  {"componentType", component},
-                                  {"count", values.size() / static_cast<std::size_t>(width)},
-                                  {"type", type},
-                                  {"normalized", normalized}});
-    return static_cast<int>(b.doc["accessors"].size() - 1);
-}
-
-// A dome, z = 0.3(1 − x² − y²) on a 9 × 9 grid over [−1, 1]², its normals exact, its texture
-// coordinates 0 or 1 at the corners of each cell: as floats, or quantized as KHR_mesh_quantization
-// allows (positions as SHORT integers k/1024 with the node scaling them by 1/1024, normals as
-// normalized BYTE, coordinates as normalized UNSIGNED_SHORT).
-std::string dome(bool quantized) {
-    GltfBuilder b;
-    std::vector<float> xyz, normal, uv;
-    std::vector<std::int16_t> q_xyz;
-    std::vector<std::int8_t> q_normal;
-    std::vector<std::uint16_t> q_uv;
-    for (int j = 0; j < 9; ++j)
-        for (int i = 0; i < 9; ++i) {
-            const int kx = (i - 4) * 256, ky = (j - 4) * 256; // x, y in 1/1024
-            const double x = kx / 1024.0, y = ky / 1024.0;
-            const int kz = static_cast<int>(std::lround(0.3 * (1 - x * x - y * y) * 1024));
-            for (const int k : {kx, ky, kz}) xyz.push_back(float(k / 1024.0)), q_xyz.push_back(std::int16_t(k));
-            const glm::dvec3 n = glm::normalize(glm::dvec3(0.6 * x, 0.6 * y, 1));
-            for (int a = 0; a < 3; ++a) {
-                const auto q = static_cast<std::int8_t>(std::lround(n[a] * 127));
-                q_normal.push_back(q), normal.push_back(float(n[a]));
-            }
-            for (const int c : {i % 2, j % 2}) uv.push_back(float(c)), q_uv.push_back(std::uint16_t(c * 65535));
-        }
-    std::vector<std::uint32_t> corners;
-    for (std::uint32_t j = 0; j < 8; ++j)
-        for (std::uint32_t i = 0; i < 8; ++i) {
-            const std::uint32_t a = 9 * j + i;
-            corners.insert(corners.end(), {a, a + 1, a + 10, a, a + 10, a + 9});
-        }
-    const int texture = b.texture(solid_png(200, 160, 90, 2, 2));
-    b.doc["materials"].push_back({{"pbrMetallicRoughness",
-                                   {{"baseColorTexture", {{"index", texture}}}, {"metallicFactor", 0.0}}}});
-    json attributes;
-    json node = {{"mesh", 0}};
-    if (quantized) {
-        attributes = {{"POSITION", integers(b, q_xyz, 5122, "VEC3", 3, false)},
-                      {"NORMAL", integers(b, q_normal, 5120, "VEC3", 3, true)},
-                      {"TEXCOORD_0", integers(b, q_uv, 5123, "VEC2", 2, true)}};
-        node["scale"] = {1 / 1024.0, 1 / 1024.0, 1 / 1024.0};
-        b.doc["extensionsUsed"] = {"KHR_mesh_quantization"};
-        b.doc["extensionsRequired"] = {"KHR_mesh_quantization"};
-    } else {
-        attributes = {{"POSITION", b.floats(xyz, "VEC3", 3)},
-                      {"NORMAL", b.floats(normal, "VEC3", 3)},
-                      {"TEXCOORD_0", b.floats(uv, "VEC2", 2)}};
-    }
-    b.doc["meshes"].push_back(
-        {{"primitives", json::array({{{"attributes", attributes}, {"indices", b.indices(corners)}, {"material", 0}}})}});
-    b.node(node);
-    camera_on_z(b);
-    light_at(b, {1, 2, 4});
-    return b.gltf();
-}
-
-// The largest difference of one channel between two images of one size.
-int largest_difference(const Image& a, const Image& b) {
-    int most = 0;
-    for (std::size_t i = 0; i < a.rgb.size(); ++i) most = std::max(most, std::abs(a.rgb[i] - b.rgb[i]));
-    return most;
+// The dome (tests/gltf_scenes.h) quantized as KHR_mesh_quantization allows: positions as SHORT
+// integers k/1024 with the node scaling them by 1/1024, normals as normalized BYTE, coordinates as
+// normalized UNSIGNED_SHORT.
+std::string quantized_dome() {
+    return dome_file(
+        [](GltfBuilder& b, const Dome& d) {
+            std::vector<std::int16_t> xyz;
+            std::vector<std::int8_t> normal;
+            std::vector<std::uint16_t> uv;
+            for (const float v : d.xyz) xyz.push_back(static_cast<std::int16_t>(std::lround(v * 1024)));
+            for (const float v : d.normal) normal.push_back(static_cast<std::int8_t>(std::lround(v * 127)));
+            for (const float v : d.uv) uv.push_back(static_cast<std::uint16_t>(std::lround(v * 65535)));
+            b.doc["extensionsUsed"].push_back("KHR_mesh_quantization");
+            b.doc["extensionsRequired"] = {"KHR_mesh_quantization"};
+            return json{{"attributes", {{"POSITION", integers(b, xyz, 5122, "VEC3", 3, false)},
+                                        {"NORMAL", integers(b, normal, 5120, "VEC3", 3, true)},
+                                        {"TEXCOORD_0", integers(b, uv, 5123, "VEC2", 2, true)}}},
+                        {"indices", b.indices(d.corners)}};
+        },
+        {{"mesh", 0}, {"scale", {1 / 1024.0, 1 / 1024.0, 1 / 1024.0}}});
 }
 
 // KHR_mesh_quantization: the quantized dome renders within 4 levels of its float twin. The
@@ -228,8 +173,8 @@ int largest_difference(const Image& a, const Image& b) {
 TEST(GltfExtensions, AQuantizedMeshRendersWithinFourLevelsOfItsFloatTwin) {
     ModelOptions options;
     options.size = std::pair{48, 48};
-    const Scene plain = parse_gltf(dome(false), "plain.gltf", {}, options);
-    const Scene quantized = parse_gltf(dome(true), "quantized.gltf", {}, options);
+    const Scene plain = parse_gltf(dome_file(plain_dome), "plain.gltf", {}, options);
+    const Scene quantized = parse_gltf(quantized_dome(), "quantized.gltf", {}, options);
     EXPECT_TRUE(quantized.warnings.empty()) << quantized.warnings.front();
     const Image a = both_modes(plain), b = both_modes(quantized);
     const int most = largest_difference(a, b);

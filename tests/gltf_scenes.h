@@ -12,6 +12,8 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
+#include <functional>
 
 namespace glint::testing {
 
@@ -53,7 +55,7 @@ inline void camera_on_z(GltfBuilder& b) {
 inline void light_at(GltfBuilder& b, std::array<double, 3> at) {
     b.doc["extensions"]["KHR_lights_punctual"]["lights"] =
         json::array({{{"type", "point"}, {"intensity", 1.0}}});
-    b.doc["extensionsUsed"] = {"KHR_lights_punctual"};
+    b.doc["extensionsUsed"].push_back("KHR_lights_punctual");
     b.node({{"translation", at}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
 }
 
@@ -78,6 +80,77 @@ inline Image both_modes(const Scene& scene) {
 inline glm::ivec3 centre(const Image& image) {
     const std::uint8_t* p = image.pixel(image.width / 2, image.height / 2);
     return {p[0], p[1], p[2]};
+}
+
+// An accessor of integers of type T (`component`: the glTF component type), normalized or not.
+template <class T>
+inline int integers(GltfBuilder& b, const std::vector<T>& values, int component, const char* type,
+             int width, bool normalized) {
+    const int v = b.view(values.data(), values.size() * sizeof(T));
+    b.doc["accessors"].push_back({{"bufferView", v},
+                                  {"componentType", component},
+                                  {"count", values.size() / static_cast<std::size_t>(width)},
+                                  {"type", type},
+                                  {"normalized", normalized}});
+    return static_cast<int>(b.doc["accessors"].size() - 1);
+}
+
+// A dome, z = 0.3(1 − x² − y²) rounded to 1/1024, on a 9 × 9 grid over [−1, 1]², its normals
+// exact, its texture coordinates 0 or 1 at the corners of each cell.
+struct Dome {
+    std::vector<float> xyz, normal, uv;
+    std::vector<std::uint32_t> corners;
+};
+inline Dome dome() {
+    Dome d;
+    for (int j = 0; j < 9; ++j)
+        for (int i = 0; i < 9; ++i) {
+            const double x = (i - 4) / 4.0, y = (j - 4) / 4.0;
+            const double z = std::round(0.3 * (1 - x * x - y * y) * 1024) / 1024;
+            d.xyz.insert(d.xyz.end(), {float(x), float(y), float(z)});
+            const glm::dvec3 n = glm::normalize(glm::dvec3(0.6 * x, 0.6 * y, 1));
+            d.normal.insert(d.normal.end(), {float(n.x), float(n.y), float(n.z)});
+            d.uv.insert(d.uv.end(), {float(i % 2), float(j % 2)});
+        }
+    for (std::uint32_t j = 0; j < 8; ++j)
+        for (std::uint32_t i = 0; i < 8; ++i) {
+            const std::uint32_t a = 9 * j + i;
+            d.corners.insert(d.corners.end(), {a, a + 1, a + 10, a, a + 10, a + 9});
+        }
+    return d;
+}
+
+// The dome's file (.gltf, or .glb where `glb`): textured, seen from +z under one light, its
+// primitive's JSON (without the material) made by `primitive`, its node `node`.
+using DomePrimitive = std::function<json(GltfBuilder&, const Dome&)>;
+inline std::string dome_file(const DomePrimitive& primitive, json node = {{"mesh", 0}},
+                             bool glb = false) {
+    GltfBuilder b;
+    b.doc["extensionsUsed"] = json::array();
+    const int texture = b.texture(solid_png(200, 160, 90, 2, 2));
+    b.doc["materials"].push_back({{"pbrMetallicRoughness",
+                                   {{"baseColorTexture", {{"index", texture}}}, {"metallicFactor", 0.0}}}});
+    json p = primitive(b, dome());
+    p["material"] = 0;
+    b.doc["meshes"].push_back({{"primitives", json::array({p})}});
+    b.node(node);
+    camera_on_z(b);
+    light_at(b, {1, 2, 4});
+    return glb ? b.glb() : b.gltf();
+}
+// Its primitive as floats.
+inline json plain_dome(GltfBuilder& b, const Dome& d) {
+    return {{"attributes", {{"POSITION", b.floats(d.xyz, "VEC3", 3)},
+                            {"NORMAL", b.floats(d.normal, "VEC3", 3)},
+                            {"TEXCOORD_0", b.floats(d.uv, "VEC2", 2)}}},
+            {"indices", b.indices(d.corners)}};
+}
+
+// The largest difference of one channel between two images of one size.
+inline int largest_difference(const Image& a, const Image& b) {
+    int most = 0;
+    for (std::size_t i = 0; i < a.rgb.size(); ++i) most = std::max(most, std::abs(a.rgb[i] - b.rgb[i]));
+    return most;
 }
 
 } // namespace glint::testing

@@ -1,0 +1,125 @@
+// Compressed glTF geometry and textures of issue 73, each made here with the same library's
+// encoder and rendered in ray and hybrid mode (the same bytes in both) against its plain twin:
+// KHR_draco_mesh_compression; and a buffer that does not decode, refused naming the place.
+#include "gltf_scenes.h"
+
+#include "io/error.h"
+
+#include <draco/compression/decode.h>
+#include <draco/compression/encode.h>
+#include <draco/mesh/triangle_soup_mesh_builder.h>
+
+#include <gtest/gtest.h>
+
+namespace glint {
+namespace {
+
+using namespace testing;
+
+// The dome's triangles as Draco encodes them (Edgebreaker; positions kept as floats, normals
+// quantized to 10 bits, texture coordinates to 12), and how the decoder numbers them.
+struct DracoDome {
+    std::string bytes;
+    std::size_t points = 0;
+    int position = -1, normal = -1, uv = -1; // attribute unique ids
+};
+
+DracoDome encode_dome() {
+    const Dome d = dome();
+    draco::TriangleSoupMeshBuilder builder;
+    const auto faces = static_cast<int>(d.corners.size() / 3);
+    builder.Start(faces);
+    const int position = builder.AddAttribute(draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32);
+    const int normal = builder.AddAttribute(draco::GeometryAttribute::NORMAL, 3, draco::DT_FLOAT32);
+    const int uv = builder.AddAttribute(draco::GeometryAttribute::TEX_COORD, 2, draco::DT_FLOAT32);
+    for (int f = 0; f < faces; ++f) {
+        const auto corner = [&](const std::vector<float>& values, int width, int k) {
+            return &values[static_cast<std::size_t>(width) * d.corners[static_cast<std::size_t>(3 * f + k)]];
+        };
+        for (const auto& [id, values, width] :
+             {std::tuple{position, &d.xyz, 3}, std::tuple{normal, &d.normal, 3}, std::tuple{uv, &d.uv, 2}})
+            builder.SetAttributeValuesForFace(id, draco::FaceIndex(f), corner(*values, width, 0),
+                                              corner(*values, width, 1), corner(*values, width, 2));
+    }
+    const std::unique_ptr<draco::Mesh> mesh = builder.Finalize();
+    draco::Encoder encoder;
+    encoder.SetAttributeQuantization(draco::GeometryAttribute::NORMAL, 10);
+    encoder.SetAttributeQuantization(draco::GeometryAttribute::TEX_COORD, 12);
+    draco::EncoderBuffer buffer;
+    EXPECT_TRUE(encoder.EncodeMeshToBuffer(*mesh, &buffer).ok());
+    DracoDome out;
+    out.bytes.assign(buffer.data(), buffer.size());
+    // What the decoder makes of it: the accessors must declare its vertex count.
+    draco::DecoderBuffer in;
+    in.Init(out.bytes.data(), out.bytes.size());
+    draco::Decoder decoder;
+    const std::unique_ptr<draco::Mesh> decoded = decoder.DecodeMeshFromBuffer(&in).value();
+    out.points = decoded->num_points();
+    out.position = static_cast<int>(decoded->GetNamedAttribute(draco::GeometryAttribute::POSITION)->unique_id());
+    out.normal = static_cast<int>(decoded->GetNamedAttribute(draco::GeometryAttribute::NORMAL)->unique_id());
+    out.uv = static_cast<int>(decoded->GetNamedAttribute(draco::GeometryAttribute::TEX_COORD)->unique_id());
+    return out;
+}
+
+// The dome as a KHR_draco_mesh_compression primitive: its accessors hold no bytes, only what the
+// decoded data must be (count, type, component type).
+std::string draco_dome(const DracoDome& encoded, bool glb = false) {
+    return dome_file([&](GltfBuilder& b, const Dome& d) {
+        const int view = b.view(encoded.bytes.data(), encoded.bytes.size());
+        const auto accessor = [&](std::size_t count, int component, const char* type) {
+            b.doc["accessors"].push_back(
+                {{"componentType", component}, {"count", count}, {"type", type}});
+            return static_cast<int>(b.doc["accessors"].size() - 1);
+        };
+        b.doc["extensionsUsed"].push_back("KHR_draco_mesh_compression");
+        b.doc["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+        return json{{"attributes", {{"POSITION", accessor(encoded.points, 5126, "VEC3")},
+                                    {"NORMAL", accessor(encoded.points, 5126, "VEC3")},
+                                    {"TEXCOORD_0", accessor(encoded.points, 5126, "VEC2")}}},
+                    {"indices", accessor(d.corners.size(), 5125, "SCALAR")},
+                    {"extensions",
+                     {{"KHR_draco_mesh_compression",
+                       {{"bufferView", view},
+                        {"attributes", {{"POSITION", encoded.position},
+                                        {"NORMAL", encoded.normal},
+                                        {"TEXCOORD_0", encoded.uv}}}}}}}};
+    }, {{"mesh", 0}}, glb);
+}
+
+// KHR_draco_mesh_compression: the Draco dome renders within 4 levels of its plain twin. The
+// positions are encoded as floats (the silhouette is the same); the coordinates are 0 or 1 over
+// a one-colour texture; the normals are quantized to 10 bits an octahedral coordinate, closer than
+// KHR_mesh_quantization's normalized bytes, so the same bound holds (tests/gltf_extensions_gl_test.cpp).
+TEST(GltfCompression, ADracoMeshRendersWithinFourLevelsOfItsPlainTwin) {
+    ModelOptions options;
+    options.size = std::pair{48, 48};
+    const Scene plain = parse_gltf(dome_file(plain_dome), "plain.gltf", {}, options);
+    const DracoDome encoded = encode_dome();
+    const Image twin = both_modes(plain);
+    for (const bool glb : {false, true}) {
+        const Scene draco = parse_gltf(draco_dome(encoded, glb), glb ? "draco.glb" : "draco.gltf", {}, options);
+        EXPECT_TRUE(draco.warnings.empty()) << draco.warnings.front();
+        ASSERT_EQ(draco.meshes.size(), 1u);
+        EXPECT_EQ(draco.meshes[0].triangles.size(), 128u);
+        EXPECT_LE(largest_difference(twin, both_modes(draco)), 4) << (glb ? "GLB" : "glTF");
+    }
+}
+
+// Bytes that are not Draco's are refused, naming the primitive's extension.
+TEST(GltfCompression, ADracoBufferThatDoesNotDecodeIsRefused) {
+    DracoDome encoded = encode_dome();
+    for (std::size_t i = 0; i < encoded.bytes.size(); ++i) encoded.bytes[i] = static_cast<char>(0x5a ^ i);
+    try {
+        parse_gltf(draco_dome(encoded), "draco.gltf", {}, {});
+        ADD_FAILURE() << "accepted";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("draco.gltf: /meshes/0/primitives/0/extensions/"
+                                             "KHR_draco_mesh_compression: the Draco data does not "
+                                             "decode"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
+} // namespace
+} // namespace glint
