@@ -40,7 +40,8 @@ bool is_data_uri(const std::string& uri) {
 const std::set<std::string> kKnownExtensions = {
     "KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior",
     "KHR_materials_emissive_strength", "KHR_texture_transform", "KHR_materials_unlit",
-    "EXT_mesh_gpu_instancing", "KHR_mesh_quantization", "KHR_draco_mesh_compression"};
+    "EXT_mesh_gpu_instancing", "KHR_mesh_quantization", "KHR_draco_mesh_compression",
+    "EXT_texture_webp"};
 
 namespace {
 

@@ -231,15 +231,24 @@ std::uint32_t GltfMaterials::texture(const Info& info, const std::string& at, bo
     const glm::mat3 transform = uv_transform(info.extensions, at, tex_coord);
     const tinygltf::Texture& t = m_.textures[static_cast<std::size_t>(info.index)];
     const std::string texture_at = pointer("textures", static_cast<std::size_t>(info.index));
-    if (t.source < 0) {
+    // EXT_texture_webp's image where it names one (its fallback, `source`, may be absent).
+    int source = t.source;
+    std::string source_at = texture_at + "/source";
+    if (const auto it = t.extensions.find("EXT_texture_webp"); it != t.extensions.end()) {
+        source_at = texture_at + "/extensions/EXT_texture_webp/source";
+        const tinygltf::Value& webp = it->second.Get("source");
+        if (!webp.IsInt()) fail(source_at, "must be an image index");
+        source = webp.GetNumberAsInt();
+    }
+    if (source < 0) {
         unused_("textures without an image source", texture_at);
         return kNoTexture;
     }
-    if (static_cast<std::size_t>(t.source) >= m_.images.size())
-        fail(texture_at + "/source", "no image " + std::to_string(t.source));
+    if (static_cast<std::size_t>(source) >= m_.images.size())
+        fail(source_at, "no image " + std::to_string(source));
     if (tex_coord != 0 && tex_coord != 1) {
         scene_.warnings.push_back(name_ + ": " + at + ": texture not used: image '" +
-                                  printable(image_label(t.source), kWhole) +
+                                  printable(image_label(source), kWhole) +
                                   "' is read through TEXCOORD_" + std::to_string(tex_coord) +
                                   ", and glint reads TEXCOORD_0 and TEXCOORD_1");
         return kNoTexture;
@@ -253,7 +262,7 @@ std::uint32_t GltfMaterials::texture(const Info& info, const std::string& at, bo
         out.wrap_s = wrap(s.wrapS, sampler_at + "/wrapS");
         out.wrap_t = wrap(s.wrapT, sampler_at + "/wrapT");
     }
-    out.image = image(t.source);
+    out.image = image(source);
     out.uv_transform = transform;
     out.srgb = colour && options_.srgb;
     out.set = tex_coord;

@@ -1,6 +1,7 @@
 // Compressed glTF geometry and textures of issue 73, each made here with the same library's
 // encoder and rendered in ray and hybrid mode (the same bytes in both) against its plain twin:
-// KHR_draco_mesh_compression; and a buffer that does not decode, refused naming the place.
+// KHR_draco_mesh_compression and EXT_texture_webp; and a buffer that does not decode, refused
+// naming the place.
 #include "gltf_scenes.h"
 
 #include "io/error.h"
@@ -8,6 +9,7 @@
 #include <draco/compression/decode.h>
 #include <draco/compression/encode.h>
 #include <draco/mesh/triangle_soup_mesh_builder.h>
+#include <webp/encode.h>
 
 #include <gtest/gtest.h>
 
@@ -119,6 +121,54 @@ TEST(GltfCompression, ADracoBufferThatDoesNotDecodeIsRefused) {
                   std::string::npos)
             << e.what();
     }
+}
+
+// A 4 × 4 image of sixteen colours, as RGB bytes.
+std::vector<std::uint8_t> checker_pixels() {
+    std::vector<std::uint8_t> rgb;
+    for (int i = 0; i < 16; ++i)
+        rgb.insert(rgb.end(), {static_cast<std::uint8_t>(16 * i), static_cast<std::uint8_t>(255 - 9 * i),
+                               static_cast<std::uint8_t>(i % 2 ? 200 : 40)});
+    return rgb;
+}
+
+// The quad (tests/gltf_scenes.h) textured with the sixteen colours: as a PNG, or (`webp`) as a
+// lossless WebP that only EXT_texture_webp names.
+Scene webp_quad(bool webp) {
+    GltfBuilder b;
+    const std::vector<std::uint8_t> rgb = checker_pixels();
+    if (webp) {
+        std::uint8_t* encoded = nullptr;
+        const std::size_t size = WebPEncodeLosslessRGB(rgb.data(), 4, 4, 12, &encoded);
+        EXPECT_GT(size, 0u);
+        const int view = b.view(encoded, size);
+        WebPFree(encoded);
+        b.doc["images"].push_back({{"bufferView", view}, {"mimeType", "image/webp"}});
+        b.doc["samplers"].push_back({{"magFilter", 9728}});
+        b.doc["textures"].push_back(
+            {{"sampler", 0}, {"extensions", {{"EXT_texture_webp", {{"source", 0}}}}}});
+        b.doc["extensionsUsed"] = {"EXT_texture_webp"};
+        b.doc["extensionsRequired"] = {"EXT_texture_webp"};
+    } else {
+        Image image(4, 4);
+        std::copy(rgb.begin(), rgb.end(), image.rgb.begin());
+        b.texture(encode_png(image), {{"magFilter", 9728}});
+    }
+    b.doc["materials"].push_back({{"pbrMetallicRoughness",
+                                   {{"baseColorTexture", {{"index", 0}}}, {"metallicFactor", 0.0}}}});
+    b.node({{"mesh", quad(b, 0)}});
+    camera_on_z(b);
+    light_at(b, {0, 0, 4});
+    return read(b, webp ? "webp.gltf" : "png.gltf");
+}
+
+// EXT_texture_webp: a lossless WebP texture renders the same bytes as the same pixels as a PNG.
+TEST(GltfCompression, AWebpTextureRendersAsTheSamePixelsInAPng) {
+    const Scene webp = webp_quad(true);
+    EXPECT_TRUE(webp.warnings.empty()) << webp.warnings.front();
+    ASSERT_EQ(webp.textures.size(), 1u);
+    EXPECT_EQ(webp.textures[0].image->rgb, checker_pixels());
+    EXPECT_TRUE(both_modes(webp).rgb == both_modes(webp_quad(false)).rgb);
 }
 
 } // namespace
