@@ -41,7 +41,7 @@ const std::set<std::string> kKnownExtensions = {
     "KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior",
     "KHR_materials_emissive_strength", "KHR_texture_transform", "KHR_materials_unlit",
     "EXT_mesh_gpu_instancing", "KHR_mesh_quantization", "KHR_draco_mesh_compression",
-    "EXT_texture_webp"};
+    "EXT_texture_webp", "EXT_meshopt_compression"};
 
 namespace {
 
@@ -167,7 +167,7 @@ class Precheck {
                 meshopt->value("fallback", false) != true)
                 continue;
             root_["buffers"][b]["uri"] = "data:application/octet-stream;base64,AA==";
-            root_["buffers"][b]["byteLength"] = 1;
+            root_["buffers"][b]["byteLength"] = std::uint64_t{1};
             rewritten_ = true;
         }
     }

@@ -4,10 +4,13 @@
 #include "io/gltf_container.h"
 
 #include <draco/compression/decode.h>
+#include <meshoptimizer.h>
 
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <optional>
 
 namespace glint {
 
@@ -41,14 +44,20 @@ class DecodedBuffer {
   public:
     explicit DecodedBuffer(tinygltf::Model& model) : model_(model) {}
 
-    // A new buffer view of `size` bytes (4-byte aligned) at the buffer's end; its index, and
-    // where its bytes start.
-    std::pair<int, std::size_t> view(std::size_t size) {
+    // `size` bytes (4-byte aligned) at the buffer's end: where they start.
+    std::size_t region(std::size_t size) {
         while (bytes_.size() % 4) bytes_.push_back(0);
         const std::size_t offset = bytes_.size();
         bytes_.resize(offset + size);
+        return offset;
+    }
+    // The index the buffer will have in the model (commit() puts it there).
+    int index() const { return static_cast<int>(model_.buffers.size()); }
+    // A new buffer view of `size` bytes at the buffer's end; its index, and where its bytes start.
+    std::pair<int, std::size_t> view(std::size_t size) {
+        const std::size_t offset = region(size);
         tinygltf::BufferView v;
-        v.buffer = static_cast<int>(model_.buffers.size()); // where commit() puts the buffer
+        v.buffer = index();
         v.byteOffset = offset;
         v.byteLength = size;
         model_.bufferViews.push_back(v);
@@ -233,10 +242,115 @@ class DracoDecoder {
     DecodedBuffer out_;
 };
 
+// EXT_meshopt_compression: each compressed buffer view decoded in place of its fallback bytes.
+class MeshoptDecoder {
+  public:
+    MeshoptDecoder(tinygltf::Model& model, const std::string& name)
+        : m_(model), name_(name), out_(model) {}
+
+    void run() {
+        for (std::size_t v = 0; v < m_.bufferViews.size(); ++v) {
+            tinygltf::BufferView& view = m_.bufferViews[v];
+            const auto it = view.extensions.find("EXT_meshopt_compression");
+            if (it == view.extensions.end()) continue;
+            const tinygltf::Value extension = it->second;
+            view.extensions.erase(it);
+            decode(view, extension, pointer("bufferViews", v) + "/extensions/EXT_meshopt_compression");
+        }
+        out_.commit();
+    }
+
+  private:
+    [[noreturn]] void fail(const std::string& place, const std::string& what) const {
+        throw SceneError(name_ + ": " + place + ": " + what);
+    }
+
+    std::size_t number(const tinygltf::Value& o, const char* key, const std::string& at,
+                       std::optional<std::size_t> otherwise = std::nullopt) const {
+        const tinygltf::Value& v = o.Get(key);
+        if (!v.IsNumber()) {
+            if (otherwise) return *otherwise;
+            fail(at + "/" + key, "must be given, a whole number");
+        }
+        const double d = v.GetNumberAsDouble();
+        if (!(d >= 0 && d <= 1e15) || d != std::floor(d))
+            fail(at + "/" + key, "must be a whole number, not negative");
+        return static_cast<std::size_t>(d);
+    }
+    std::string text(const tinygltf::Value& o, const char* key, const std::string& at,
+                     const std::string& otherwise) const {
+        const tinygltf::Value& v = o.Get(key);
+        if (v.IsString()) return v.Get<std::string>();
+        if (o.Has(key)) fail(at + "/" + key, "must be a string");
+        return otherwise;
+    }
+
+    void decode(tinygltf::BufferView& view, const tinygltf::Value& e, const std::string& at) {
+        const std::size_t buffer = number(e, "buffer", at);
+        const std::size_t offset = number(e, "byteOffset", at, 0);
+        const std::size_t length = number(e, "byteLength", at);
+        const std::size_t stride = number(e, "byteStride", at);
+        const std::size_t count = number(e, "count", at);
+        const std::string mode = text(e, "mode", at, "");
+        const std::string filter = text(e, "filter", at, "NONE");
+        if (buffer >= m_.buffers.size()) fail(at + "/buffer", "no buffer " + std::to_string(buffer));
+        const std::vector<unsigned char>& data = m_.buffers[buffer].data;
+        if (length > data.size() || offset > data.size() - length)
+            fail(at, "bytes " + std::to_string(offset) + " to " + std::to_string(offset + length) +
+                         " are beyond buffer " + std::to_string(buffer) + "'s " +
+                         std::to_string(data.size()) + " bytes");
+        if (stride == 0 || count > view.byteLength / stride || count * stride != view.byteLength)
+            fail(at, std::to_string(count) + " elements of " + std::to_string(stride) +
+                         " bytes do not fill the view's " + std::to_string(view.byteLength));
+        // The decoders assert rather than check these (meshoptimizer.h).
+        if (mode == "ATTRIBUTES") {
+            if (stride % 4 != 0 || stride > 256)
+                fail(at + "/byteStride", "an ATTRIBUTES stride is a multiple of 4, at most 256");
+        } else if (mode == "TRIANGLES" || mode == "INDICES") {
+            if (stride != 2 && stride != 4) fail(at + "/byteStride", "an index is 2 or 4 bytes");
+            if (mode == "TRIANGLES" && count % 3 != 0)
+                fail(at + "/count", "TRIANGLES holds whole triangles");
+            if (filter != "NONE") fail(at + "/filter", "only ATTRIBUTES are filtered");
+        } else {
+            fail(at + "/mode", "must be ATTRIBUTES, TRIANGLES or INDICES, not '" + printable(mode) + "'");
+        }
+        const std::size_t to = out_.region(view.byteLength);
+        unsigned char* bytes = out_.at(to);
+        const unsigned char* from = data.data() + offset;
+        const int status = mode == "ATTRIBUTES" ? meshopt_decodeVertexBuffer(bytes, count, stride, from, length)
+                           : mode == "TRIANGLES" ? meshopt_decodeIndexBuffer(bytes, count, stride, from, length)
+                                                 : meshopt_decodeIndexSequence(bytes, count, stride, from, length);
+        if (status != 0)
+            fail(at, "the meshopt data does not decode (meshoptimizer's error " + std::to_string(status) + ")");
+        if (filter == "OCTAHEDRAL") {
+            if (stride != 4 && stride != 8) fail(at + "/byteStride", "OCTAHEDRAL needs 4 or 8 bytes");
+            meshopt_decodeFilterOct(bytes, count, stride);
+        } else if (filter == "QUATERNION") {
+            if (stride != 8) fail(at + "/byteStride", "QUATERNION needs 8 bytes");
+            meshopt_decodeFilterQuat(bytes, count, stride);
+        } else if (filter == "EXPONENTIAL") {
+            meshopt_decodeFilterExp(bytes, count, stride);
+        } else if (filter != "NONE") {
+            fail(at + "/filter", "must be NONE, OCTAHEDRAL, QUATERNION or EXPONENTIAL, not '" +
+                                     printable(filter) + "'");
+        }
+        view.buffer = out_.index();
+        view.byteOffset = to;
+    }
+
+    tinygltf::Model& m_;
+    const std::string& name_;
+    DecodedBuffer out_;
+};
+
 } // namespace
 
 void decode_draco(tinygltf::Model& model, const std::string& name) {
     DracoDecoder(model, name).run();
+}
+
+void decode_meshopt(tinygltf::Model& model, const std::string& name) {
+    MeshoptDecoder(model, name).run();
 }
 
 } // namespace glint

@@ -18,4 +18,8 @@ namespace glint {
 // primitive's own accessors give.
 void decode_draco(tinygltf::Model& model, const std::string& name);
 
+// Each buffer view with EXT_meshopt_compression: its bytes decoded (vertex or index codec, then
+// the filter) from the compressed buffer the extension names, into a new buffer.
+void decode_meshopt(tinygltf::Model& model, const std::string& name);
+
 } // namespace glint

@@ -697,6 +697,7 @@ Scene parse_gltf(const std::string& bytes, const std::string& name, const ModelF
                  const ModelOptions& options) {
     std::vector<std::string> warnings;
     tinygltf::Model model = read_gltf_container(bytes, name, files, warnings);
+    decode_meshopt(model, name);
     decode_draco(model, name);
     return Reader(model, name, files, options, std::move(warnings)).read();
 }

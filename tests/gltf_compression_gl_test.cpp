@@ -1,7 +1,7 @@
 // Compressed glTF geometry and textures of issue 73, each made here with the same library's
 // encoder and rendered in ray and hybrid mode (the same bytes in both) against its plain twin:
-// KHR_draco_mesh_compression and EXT_texture_webp; and a buffer that does not decode, refused
-// naming the place.
+// KHR_draco_mesh_compression, EXT_meshopt_compression and EXT_texture_webp; and buffers that do
+// not decode, refused naming the place.
 #include "gltf_scenes.h"
 
 #include "io/error.h"
@@ -9,6 +9,7 @@
 #include <draco/compression/decode.h>
 #include <draco/compression/encode.h>
 #include <draco/mesh/triangle_soup_mesh_builder.h>
+#include <meshoptimizer.h>
 #include <webp/encode.h>
 
 #include <gtest/gtest.h>
@@ -118,6 +119,92 @@ TEST(GltfCompression, ADracoBufferThatDoesNotDecodeIsRefused) {
         EXPECT_NE(std::string(e.what()).find("draco.gltf: /meshes/0/primitives/0/extensions/"
                                              "KHR_draco_mesh_compression: the Draco data does not "
                                              "decode"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
+// The dome as gltfpack writes a file: each attribute and the indices a buffer view over a
+// fallback buffer with no bytes, its EXT_meshopt_compression naming the compressed bytes in the
+// file's buffer; the normals octahedral-filtered into 8-bit components (a KHR_mesh_quantization
+// accessor). `damage`: the compressed bytes overwritten.
+std::string meshopt_dome(bool damage = false) {
+    std::size_t fallback = 0; // bytes of the fallback buffer the views cover
+    const std::string text = dome_file([&](GltfBuilder& b, const Dome& d) {
+        const std::size_t n = d.xyz.size() / 3;
+        // A view over the fallback buffer whose bytes are `raw` compressed as `mode`.
+        const auto compressed = [&](const void* raw, std::size_t count, std::size_t stride,
+                                    const char* mode, const char* filter) {
+            std::vector<unsigned char> packed;
+            if (std::string(mode) == "TRIANGLES") {
+                packed.resize(meshopt_encodeIndexBufferBound(count, n));
+                packed.resize(meshopt_encodeIndexBuffer(packed.data(), packed.size(),
+                                                        static_cast<const unsigned*>(raw), count));
+            } else {
+                packed.resize(meshopt_encodeVertexBufferBound(count, stride));
+                packed.resize(meshopt_encodeVertexBuffer(packed.data(), packed.size(), raw, count, stride));
+            }
+            if (damage) std::fill(packed.begin() + 1, packed.end(), 0xff);
+            const int source = b.view(packed.data(), packed.size());
+            json view = {{"buffer", 1}, {"byteOffset", fallback}, {"byteLength", count * stride},
+                         {"extensions", {{"EXT_meshopt_compression",
+                                          {{"buffer", 0},
+                                           {"byteOffset", b.doc["bufferViews"][source]["byteOffset"]},
+                                           {"byteLength", packed.size()},
+                                           {"byteStride", stride},
+                                           {"count", count},
+                                           {"mode", mode},
+                                           {"filter", filter}}}}}};
+            if (std::string(mode) == "ATTRIBUTES") view["byteStride"] = stride;
+            fallback += (count * stride + 3) / 4 * 4;
+            b.doc["bufferViews"].push_back(view);
+            return static_cast<int>(b.doc["bufferViews"].size() - 1);
+        };
+        const auto accessor = [&](int view, std::size_t count, int component, const char* type,
+                                  bool normalized) {
+            b.doc["accessors"].push_back({{"bufferView", view}, {"componentType", component},
+                                          {"count", count}, {"type", type}, {"normalized", normalized}});
+            return static_cast<int>(b.doc["accessors"].size() - 1);
+        };
+        std::vector<float> normal4;
+        for (std::size_t i = 0; i < n; ++i)
+            normal4.insert(normal4.end(), {d.normal[3 * i], d.normal[3 * i + 1], d.normal[3 * i + 2], 0.0f});
+        std::vector<std::int8_t> octahedral(4 * n);
+        meshopt_encodeFilterOct(octahedral.data(), n, 4, 8, normal4.data());
+        b.doc["extensionsUsed"].push_back("EXT_meshopt_compression");
+        b.doc["extensionsUsed"].push_back("KHR_mesh_quantization");
+        b.doc["extensionsRequired"] = {"EXT_meshopt_compression", "KHR_mesh_quantization"};
+        return json{{"attributes",
+                     {{"POSITION", accessor(compressed(d.xyz.data(), n, 12, "ATTRIBUTES", "NONE"), n, 5126, "VEC3", false)},
+                      {"NORMAL", accessor(compressed(octahedral.data(), n, 4, "ATTRIBUTES", "OCTAHEDRAL"), n, 5120, "VEC3", true)},
+                      {"TEXCOORD_0", accessor(compressed(d.uv.data(), n, 8, "ATTRIBUTES", "NONE"), n, 5126, "VEC2", false)}}},
+                    {"indices", accessor(compressed(d.corners.data(), d.corners.size(), 4, "TRIANGLES", "NONE"),
+                                         d.corners.size(), 5125, "SCALAR", false)}};
+    });
+    json doc = json::parse(text);
+    doc["buffers"].push_back({{"byteLength", fallback},
+                              {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}});
+    return doc.dump();
+}
+
+// EXT_meshopt_compression: the meshopt dome renders within 4 levels of its plain twin. The
+// vertex and index codecs are lossless; the octahedral filter keeps 8 bits a normal component,
+// as KHR_mesh_quantization's normalized bytes do, so the same bound holds.
+TEST(GltfCompression, AMeshoptMeshRendersWithinFourLevelsOfItsPlainTwin) {
+    ModelOptions options;
+    options.size = std::pair{48, 48};
+    const Scene plain = parse_gltf(dome_file(plain_dome), "plain.gltf", {}, options);
+    const Scene packed = parse_gltf(meshopt_dome(), "meshopt.gltf", {}, options);
+    EXPECT_TRUE(packed.warnings.empty()) << packed.warnings.front();
+    ASSERT_EQ(packed.meshes.size(), 1u);
+    EXPECT_EQ(packed.meshes[0].vertices, plain.meshes[0].vertices) << "positions are lossless";
+    EXPECT_LE(largest_difference(both_modes(plain), both_modes(packed)), 4);
+    try {
+        parse_gltf(meshopt_dome(true), "meshopt.gltf", {}, options);
+        ADD_FAILURE() << "damaged bytes accepted";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("/extensions/EXT_meshopt_compression: the meshopt "
+                                             "data does not decode"),
                   std::string::npos)
             << e.what();
     }
