@@ -1,8 +1,12 @@
 // Writes the glTF fuzzer's seeds (fuzz/gltf_fuzzer.cpp) into the directory given: small models
 // made by tests/gltf_builder.h, as .gltf text and as .glb, covering what the loader reads (TRS
 // and matrix nodes, instanced meshes, a camera, a light, a texture with a sampler, a strip, a
-// cut-out and an emissive material, an animation with each interpolation).
+// cut-out and an emissive material, an animation with each interpolation, a skin with morph
+// targets and their weights animated, EXT_mesh_gpu_instancing, an unlit material, quantized,
+// Draco and meshopt geometry, and a WebP texture).
 #include "gltf_builder.h"
+#include "gltf_compressed.h"
+#include "gltf_models.h"
 #include "rgba_png.h"
 
 #include "io/png.h"
@@ -102,5 +106,66 @@ int main(int argc, char** argv) {
     texels.doc["extensionsUsed"] = {"KHR_texture_transform"};
     std::ofstream(dir / "texels.gltf", std::ios::binary) << texels.gltf();
     std::ofstream(dir / "texels.glb", std::ios::binary) << texels.glb();
+    // DESIGN §14's skins and morph targets: a quad skinned to two joints, with two morph
+    // targets, the second joint's rotation and the weights animated; drawn by an instancing node
+    // too (its instances each place the node's mesh), under an unlit material.
+    using glint::testing::integers;
+    GltfBuilder skin;
+    const nlohmann::json quad_attributes = {
+        {"POSITION", skin.floats({-1, 0, 0, 1, 0, 0, 1, 2, 0, -1, 2, 0}, "VEC3", 3)},
+        {"NORMAL", skin.floats({0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3", 3)},
+        {"JOINTS_0", integers<std::uint16_t>(skin, {0, 1, 0, 0, 0, 1, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, 5123, "VEC4", 4, false)},
+        {"WEIGHTS_0", skin.floats({1, 0, 0, 0, 0.7f, 0.3f, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, "VEC4", 4)}};
+    skin.doc["materials"].push_back({{"extensions", {{"KHR_materials_unlit", nlohmann::json::object()}}}});
+    skin.doc["meshes"].push_back(
+        {{"primitives",
+          {{{"attributes", quad_attributes},
+            {"indices", skin.indices({0, 1, 2, 0, 2, 3})},
+            {"material", 0},
+            {"targets", {{{"POSITION", skin.floats({0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0}, "VEC3", 3)}},
+                         {{"POSITION", skin.floats({0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0}, "VEC3", 3)},
+                          {"NORMAL", skin.floats({0, 0.1f, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}, "VEC3", 3)}}}}}}},
+         {"weights", {0.5, 0}}});
+    const int hip = skin.node({{"name", "hip"}});
+    const int knee = skin.node({{"translation", {0, 1, 0}}}, false);
+    skin.doc["nodes"][hip]["children"] = {knee};
+    skin.doc["skins"] = {{{"joints", {hip, knee}},
+                          {"inverseBindMatrices",
+                           skin.floats({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1,
+                                        1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1},
+                                       "MAT4", 16)}}};
+    skin.node({{"mesh", 0}, {"skin", 0}});
+    skin.node({{"mesh", 0},
+               {"translation", {3, 0, 0}},
+               {"extensions",
+                {{"EXT_mesh_gpu_instancing",
+                  {{"attributes",
+                    {{"TRANSLATION", skin.floats({0, 0, 0, 2, 0, 0, 0, 2, 0}, "VEC3", 3)},
+                     {"SCALE", skin.floats({1, 1, 1, 0.5f, 0.5f, 0.5f, 1, 2, 1}, "VEC3", 3)}}}}}}}});
+    const int key_times = skin.floats({0, 1}, "SCALAR", 1);
+    skin.doc["animations"] = {
+        {{"samplers",
+          {{{"input", key_times}, {"output", skin.floats({0, 0, 0, 1, 0, 0, 0.7071068f, 0.7071068f}, "VEC4", 4)}},
+           {{"input", key_times}, {"output", skin.floats({0, 0, 1, 0.5f}, "SCALAR", 1)}}}},
+         {"channels",
+          {{{"sampler", 0}, {"target", {{"node", knee}, {"path", "rotation"}}}},
+           {{"sampler", 1}, {"target", {{"node", 2}, {"path", "weights"}}}}}}}};
+    skin.doc["extensionsUsed"] = {"KHR_materials_unlit", "EXT_mesh_gpu_instancing"};
+    std::ofstream(dir / "skin.gltf", std::ios::binary) << skin.gltf();
+    std::ofstream(dir / "skin.glb", std::ios::binary) << skin.glb();
+    // Compressed and quantized geometry and a WebP texture (tests/gltf_compressed.h).
+    using glint::testing::dome_file;
+    std::ofstream(dir / "quantized.gltf", std::ios::binary) << dome_file([](GltfBuilder& q, const glint::testing::Dome& d) {
+        std::vector<std::int16_t> xyz;
+        for (const float v : d.xyz) xyz.push_back(static_cast<std::int16_t>(v * 1024));
+        q.doc["extensionsUsed"].push_back("KHR_mesh_quantization");
+        return nlohmann::json{{"attributes", {{"POSITION", integers(q, xyz, 5122, "VEC3", 3, false)}}},
+                              {"indices", q.indices(d.corners)}};
+    }, {{"mesh", 0}, {"scale", {1 / 1024.0, 1 / 1024.0, 1 / 1024.0}}});
+    const glint::testing::DracoDome draco = glint::testing::encode_dome();
+    std::ofstream(dir / "draco.gltf", std::ios::binary) << glint::testing::draco_dome(draco);
+    std::ofstream(dir / "draco.glb", std::ios::binary) << glint::testing::draco_dome(draco, true);
+    std::ofstream(dir / "meshopt.gltf", std::ios::binary) << glint::testing::meshopt_dome();
+    std::ofstream(dir / "webp.gltf", std::ios::binary) << glint::testing::webp_quad(true).gltf();
     return 0;
 }
