@@ -116,7 +116,10 @@ Scene SceneOptions::load() const {
                          ": must be 0 or more seconds (at most 1e9)");
     if (animation_option->count() && animation < 0)
         throw UsageError("--animation " + std::to_string(animation) + ": must be 0 or more");
-    if (time_option->count() || animation_option->count() || animate) model.time = time;
+    if (time_option->count() || animation_option->count() || animate || animate_if_any)
+        model.time = time;
+    model.quiet_without_animation =
+        animate_if_any && !time_option->count() && !animation_option->count();
     model.animation = animation;
     model.srgb = srgb;
     if (!framing.empty()) model.view = from_name<ModelView>(framing);

@@ -62,8 +62,9 @@ struct SceneOptions {
     CLI::Option* time_option = nullptr;
     CLI::Option* animation_option = nullptr;
     // Set by a sequence (`glint render --frames`): the scene's animation is read even without
-    // --time, to be played from T (default 0).
-    bool animate = false;
+    // --time, to be played from T (default 0). `animate_if_any`, the preview's: the same where
+    // the file has an animation, with no note where it has none.
+    bool animate = false, animate_if_any = false;
     bool srgb = false; // `glint render --colour srgb`: ModelOptions::srgb
     std::string framing;     // `--framing`: ModelOptions::view; empty: the format's default
     std::string environment; // `--environment`: a file, studio or none; empty: the scene's

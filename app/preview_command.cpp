@@ -54,7 +54,12 @@ PreviewOptions prepare(const PreviewArgs& args) {
     }
     options.settings = args.settings;
     options.panel = !args.no_panel;
-    options.scene = args.scene.load();
+    // An animated glTF model is read with its animation, posed at --time (default 0), so that
+    // the panel's Animation slider and the space key can play it.
+    SceneOptions scene = args.scene;
+    scene.animate_if_any = true;
+    options.scene = scene.load();
+    options.time = scene.time;
     options.scene_name = args.scene.scene_path().string();
     if (!args.click.empty()) {
         const Camera& camera = options.scene.camera;

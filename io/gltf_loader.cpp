@@ -346,7 +346,8 @@ class Reader {
         const int count = static_cast<int>(m_.animations.size());
         const int k = options_.animation;
         if (count == 0 && k == 0) {
-            scene_.notes.push_back("the file has no animations: --time places nothing");
+            if (!options_.quiet_without_animation)
+                scene_.notes.push_back("the file has no animations: --time places nothing");
             return;
         }
         if (k < 0 || k >= count)

@@ -30,6 +30,9 @@ struct ModelOptions {
     // nodes' own TRS, and no animation is read.
     std::optional<double> time;
     int animation = 0;
+    // No note where a time is given and the file has no animation (the preview asks for one
+    // whether or not the file has any).
+    bool quiet_without_animation = false;
     // `glint render --colour srgb`: a glTF's base colour and emissive textures are decoded from
     // sRGB to linear (their factors are linear already).
     bool srgb = false;

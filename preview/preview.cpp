@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cctype>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 
@@ -30,6 +31,7 @@ Preview::Preview(const PreviewOptions& options)
       camera_(options.scene.camera), scene_(options.scene), frame_(options.frame),
       view_(options.view), accel_(options.accel), panel_visible_(options.panel),
       refiner_(options.frame.threads) {
+    time_ = options.time;
     glfwSwapInterval(0); // frames are paced by the loop; swapping never waits for a display
     glGenTextures(1, &texture_);
     glGenFramebuffers(1, &read_framebuffer_);
@@ -142,7 +144,8 @@ void Preview::start_comparison() {
 
 void Preview::set(const std::string& name, const std::string& value) {
     switch (set_panel_setting(
-        {frame_, scene_.render, accel_, view_, panel_visible_, reference_choice_}, name, value)) {
+        {frame_, scene_.render, accel_, view_, panel_visible_, reference_choice_, time_}, name,
+        value)) {
     case Effect::new_world:
         world_.reset(); // a structure of another kind: built afresh, not refitted
         dirty_ = true;
@@ -161,6 +164,9 @@ void Preview::set(const std::string& name, const std::string& value) {
         break;
     case Effect::panel:
         break;
+    case Effect::pose:
+        pose();
+        break;
     case Effect::reference:
         if (reference_choice_ == "none") {
             reference_.reset();
@@ -177,6 +183,20 @@ void Preview::set(const std::string& name, const std::string& value) {
     }
     std::printf("glint: panel: %s = %s\n", name.c_str(), value.c_str());
     std::fflush(stdout);
+}
+
+void Preview::pose() {
+    if (!scene_.animation) return;
+    scene_.animation->pose(scene_, time_);
+    const std::vector<std::uint32_t> moving = scene_.animation->moving_meshes();
+    const std::shared_ptr<const SceneGeometry> before =
+        posed_geometry_ ? posed_geometry_ : world_ ? world_->geometry() : nullptr;
+    if (before && !moving.empty())
+        posed_geometry_ = std::make_shared<const SceneGeometry>(*before, scene_, moving);
+    else
+        posed_geometry_ = before;
+    world_.reset(); // the objects moved: the top level is built afresh over the posed geometry
+    upload_needed_ = dirty_ = true;
 }
 
 void Preview::explain(int x, int y) {
@@ -218,10 +238,11 @@ int Preview::run() {
     auto next_frame = Clock::now();
     int frames = 0;
     bool complete = false;
+    auto played_at = Clock::now(); // when an animation playing was last advanced
     while (!glfwWindowShouldClose(w)) {
         // Wait for input; while something is still to show (a trace or a comparison under way),
         // no longer than the next frame.
-        if (options_.scripted() || dirty_ || !complete)
+        if (options_.scripted() || dirty_ || !complete || playing_)
             glfwWaitEventsTimeout(
                 std::max(0.0, std::chrono::duration<double>(next_frame - Clock::now()).count()));
         else
@@ -237,6 +258,16 @@ int Preview::run() {
                 const auto [name, value] = split_assignment(assignment);
                 set(name, value);
             }
+        if (playing_ && scene_.animation) {
+            // Played at the wall clock's pace, from where the slider left it, round and round.
+            const auto now = Clock::now();
+            const double duration = std::max(scene_.animation->duration(), 1e-3);
+            time_ = std::fmod(time_ + std::chrono::duration<double>(now - played_at).count(), duration);
+            played_at = now;
+            pose();
+        } else {
+            played_at = Clock::now();
+        }
         if (options_.spin != 0 && frames < options_.frames) {
             camera_.orbit(options_.spin, 0);
             dirty_ = true;

@@ -36,12 +36,13 @@ struct PreviewOptions {
     // drawn).
     std::optional<std::pair<int, int>> click;
     bool panel = true; // the panel (and a clicked pixel's tree) shown; G toggles it
+    double time = 0;   // where an animated model is posed first (`--time`)
 
     bool scripted() const { return frames > 0 || !screenshot.empty(); }
 };
 
 // The settings the panel controls, by the names --set takes: mode, raster, resolve, depth,
-// cutoff, tess, samples, aa, accel, view, panel.
+// cutoff, tess, samples, aa, accel, view, panel, reference, time.
 extern const std::vector<std::string> kPreviewSettings;
 
 // Where the panel first opens in a window of this size (window coordinates): along the right

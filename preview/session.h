@@ -51,6 +51,9 @@ class Preview {
 
     // The panel's path for every setting (its controls, and scripted --set).
     void set(const std::string& name, const std::string& value);
+    // Poses an animated model at time_ (its nodes, skins and morph targets): the moved meshes'
+    // BVHs built again, the item buffer uploaded again, the frame traced again.
+    void pose();
     // Explains pixel (x, y) of the finished trace: the text to stdout and the panel, the tree's
     // segments to the overlay.
     void explain(int x, int y);
@@ -102,6 +105,11 @@ class Preview {
     bool screenshot_requested_ = false;
     int screenshots_ = 0;
     std::shared_ptr<const World> world_; // of the current camera
+    // An animated model's time (seconds), whether it plays, and the geometry of its last pose
+    // (the meshes its skins and morph targets moved prepared again; none before a pose).
+    double time_ = 0;
+    bool playing_ = false;
+    std::shared_ptr<const SceneGeometry> posed_geometry_;
     // The reference the live image is compared with: none, exact or taken (the settings as they
     // were when taken); its comparison for the current camera and settings, and comparisons no
     // longer wanted that are still finishing (dropped once ready: no wait on the UI thread).

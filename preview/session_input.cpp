@@ -26,6 +26,9 @@ void Preview::on_key(int key) {
     case GLFW_KEY_P:
         screenshot_requested_ = true;
         return;
+    case GLFW_KEY_SPACE:
+        playing_ = scene_.animation && !playing_;
+        return;
     case GLFW_KEY_G:
         panel_visible_ = !panel_visible_;
         return;

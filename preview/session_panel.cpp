@@ -152,6 +152,15 @@ void Preview::draw_panel() {
             if (auto v = enum_combo("structure", world_->accelerator().kind())) set("accel", *v);
         if (auto v = enum_combo("view", view_)) set("view", *v);
     }
+    if (scene_.animation && ImGui::CollapsingHeader("Animation", ImGuiTreeNodeFlags_DefaultOpen)) {
+        ImGui::TextWrapped("%s, %.3g s", scene_.animation->name().c_str(),
+                           scene_.animation->duration());
+        float t = static_cast<float>(time_);
+        if (ImGui::SliderFloat("time (s)", &t, 0.0f,
+                               static_cast<float>(std::max(scene_.animation->duration(), 1e-3))))
+            set("time", std::to_string(t));
+        ImGui::Checkbox("play (space)", &playing_);
+    }
     if (ImGui::CollapsingHeader("Frame", ImGuiTreeNodeFlags_DefaultOpen) && job_) {
         const RayCounts rays = job_->rays();
         if (job_->finished())

@@ -21,8 +21,9 @@ void Preview::restart() {
     scene.camera = camera_.camera();
     // The first world prepares the scene; later ones share its meshes and refit its structure.
     const Stopwatch world_watch;
-    world_ = world_ ? std::make_shared<const World>(scene, *world_)
-                    : std::make_shared<const World>(scene, accel_);
+    world_ = world_            ? std::make_shared<const World>(scene, *world_)
+             : posed_geometry_ ? std::make_shared<const World>(scene, posed_geometry_, accel_)
+                               : std::make_shared<const World>(scene, accel_);
     log_.worlds.push_back(world_watch.milliseconds());
     const std::shared_ptr<const World>& world = world_;
     // An explained pixel is explained again for new settings; a new camera forgets it.

@@ -24,14 +24,15 @@ const std::string_view kPreviewKeys = R"(glint preview keys
   M                 raster mode: mesh / proxy / auto
   E                 resolve mode: exact / trust
   T                 tracer: hybrid (item buffer) / ray
+  space             an animated model: play / pause (the panel's Animation slider sets the time)
   P                 save a screenshot PNG
   H                 this list
   Esc, Q            quit
 )";
 
-const std::vector<std::string> kPreviewSettings = {"mode",   "raster", "resolve", "depth",
-                                                   "cutoff", "tess",   "samples", "aa",
-                                                   "accel",  "view",   "panel",   "reference"};
+const std::vector<std::string> kPreviewSettings = {
+    "mode", "raster", "resolve", "depth", "cutoff", "tess", "samples",
+    "aa",   "accel",  "view",    "panel", "reference", "time"};
 
 namespace {
 
@@ -107,6 +108,7 @@ Effect set_panel_setting(const PanelState& s, const std::string& name, const std
                                         ": expected none, exact or taken (the settings now)");
         return s.reference = value, Effect::reference;
     }
+    if (name == "time") return s.time = parse_number(name, value, 0, 1e9), Effect::pose;
     throw std::invalid_argument("no setting named '" + name +
                                 "' (the panel's: " + one_of(kPreviewSettings) + ")");
 }
@@ -126,8 +128,9 @@ void check_preview_setting(const std::string& assignment) {
     View view = View::final;
     bool panel = true;
     std::string reference;
+    double time = 0;
     const auto [name, value] = split_assignment(assignment);
-    set_panel_setting({frame, render, accel, view, panel, reference}, name, value);
+    set_panel_setting({frame, render, accel, view, panel, reference, time}, name, value);
 }
 
 } // namespace glint

@@ -21,10 +21,11 @@ struct PanelState {
     View& view;
     bool& panel;
     std::string& reference; // none, exact, or taken (the settings as they are when it is set)
+    double& time;           // seconds: where an animated model is posed (DESIGN §13, §14)
 };
 
 // What a change of setting asks of the preview.
-enum class Effect { retrace, upload, new_world, view, panel, reference };
+enum class Effect { retrace, upload, new_world, view, panel, reference, pose };
 
 // Sets one of the panel's settings by name: the panel's controls and --set both come here.
 // Throws std::invalid_argument saying what is wrong.

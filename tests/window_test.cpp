@@ -5,6 +5,7 @@
 #include "frame/difference_maps.h"
 #include "frame/explain.h"
 #include "frame/frame.h"
+#include "io/gltf_loader.h"
 #include "io/png.h"
 #include "preview/preview.h"
 #include "preview/ray_overlay.h"
@@ -236,6 +237,31 @@ TEST(Preview, ThePanelsControlsChangeWhatIsTraced) {
     const Frame headless = render_frame(World(expected, AccelKind::kd), ray);
     EXPECT_EQ(shown.rgb, headless.result.bytes().rgb);
     EXPECT_NE(shown.rgb, render_frame(World(options.scene), ray).result.bytes().rgb);
+}
+
+// An animated model's time (the panel's Animation slider, scripted --set time=T): the window
+// shows the model posed at T, its skin included, as a sequence's frame at T renders it (the
+// camera the one it opened with, as a sequence keeps its first frame's).
+TEST(Preview, TheTimeSettingPosesAnAnimatedModel) {
+    const std::string model =
+        (fs::path(GLINT_SOURCE_DIR) / "models/khronos/RiggedSimple/glTF/RiggedSimple.gltf").string();
+    ModelOptions at_zero;
+    at_zero.time = 0;
+    at_zero.size = std::pair{160, 120};
+    PreviewOptions options;
+    options.scene = load_gltf(model, at_zero);
+    options.scene.render.samples = 1;
+    options.scene_name = model;
+    options.settings = {"mode=ray", "time=1", "panel=off"};
+    const auto [shown, out] = scripted(options, "time");
+    EXPECT_NE(out.find("glint: panel: time = 1"), std::string::npos) << out;
+    Scene expected = options.scene;
+    ASSERT_TRUE(expected.animation);
+    expected.animation->pose(expected, 1.0);
+    FrameSettings ray;
+    ray.mode = Mode::ray;
+    EXPECT_EQ(shown.rgb, render_frame(World(expected), ray).result.bytes().rgb);
+    EXPECT_NE(shown.rgb, render_frame(World(options.scene), ray).result.bytes().rgb) << "it moved";
 }
 
 // The reference (docs/PREVIEW.md, "The panel"): the cause map view against exact is `glint
