@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cstdint>
 #include <cstring>
 #include <map>
 #include <optional>
@@ -121,10 +122,13 @@ class Precheck {
         return out + text + bin;
     }
 
-    // What compressed() left out, put back into the parsed model.
+    // What compressed() left out, put back into the parsed model: where tinygltf kept the
+    // primitive (it drops a malformed one: decode_draco then gives it indices of its own).
     void restore(tinygltf::Model& model) const {
         for (const auto& [mesh, primitive, indices] : draco_indices_)
-            model.meshes.at(mesh).primitives.at(primitive).indices = static_cast<int>(indices);
+            if (mesh < model.meshes.size() && primitive < model.meshes[mesh].primitives.size())
+                model.meshes[mesh].primitives[primitive].indices =
+                    static_cast<int>(std::min<std::size_t>(indices, INT32_MAX));
     }
 
   private:
