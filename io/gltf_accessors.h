@@ -26,9 +26,10 @@ class GltfAccessors {
     // Throws SceneError "NAME: PLACE: WHAT".
     [[noreturn]] void fail(const std::string& place, const std::string& what) const;
     const std::string& name() const { return name_; }
+    // The bytes of one component of glTF component type `type`; 0 for a type glint does not read.
+    static int component_bytes(int type);
 
   private:
-    static int component_bytes(int type);
     static double component(const unsigned char* p, int type, bool normalized);
     // The bytes of buffer view `view` from `offset`, for `count` elements of `element` bytes
     // `stride` apart: checked against the view and its buffer, and returned.

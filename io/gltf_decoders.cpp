@@ -1,6 +1,7 @@
 #include "io/gltf_decoders.h"
 
 #include "io/error.h"
+#include "io/gltf_accessors.h"
 #include "io/gltf_container.h"
 
 #include <draco/compression/decode.h>
@@ -23,18 +24,6 @@ int components(int type) {
     case TINYGLTF_TYPE_VEC2: return 2;
     case TINYGLTF_TYPE_VEC3: return 3;
     case TINYGLTF_TYPE_VEC4: return 4;
-    default: return 0;
-    }
-}
-
-int component_bytes(int component_type) {
-    switch (component_type) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
     default: return 0;
     }
 }
@@ -147,7 +136,7 @@ class DracoDecoder {
             fail(at, "the primitive's accessor " + std::to_string(index) + " does not exist");
         tinygltf::Accessor accessor = m_.accessors[static_cast<std::size_t>(index)];
         const int n = components(accessor.type);
-        const int bytes = component_bytes(accessor.componentType);
+        const int bytes = GltfAccessors::component_bytes(accessor.componentType);
         if (n == 0 || bytes == 0)
             fail(pointer("accessors", static_cast<std::size_t>(index)), "a type Draco data cannot fill");
         if (accessor.count != mesh.num_points())
@@ -209,7 +198,7 @@ class DracoDecoder {
                                              " indices, where the Draco data decodes " +
                                              std::to_string(count));
         accessor.count = count;
-        const int bytes = component_bytes(accessor.componentType);
+        const int bytes = GltfAccessors::component_bytes(accessor.componentType);
         if (accessor.type != TINYGLTF_TYPE_SCALAR || bytes == 0 ||
             accessor.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT)
             fail(accessor_at, "indices are unsigned integer scalars");
