@@ -18,8 +18,8 @@
 #                                           rank 0 dying leaves none either
 #   mpi_test.sh GLINT MPIRUN slow-rank      a rank slowed down (GLINT_TEST_RANK_SLOW) takes fewer
 #                                           tiles, and the image is the single process's
-#   mpi_test.sh GLINT MPIRUN frames         a sequence's frames spread over 2 ranks are the single
-#                                           process's, file for file
+#   mpi_test.sh GLINT MPIRUN frames         a sequence's frames spread over 2 ranks (a skinned
+#                                           model's too) are the single process's, file for file
 #   mpi_test.sh GLINT MPIRUN cluster-sim    tools/cluster-sim refuses without root (exit 2), and
 #                                           as root runs 2 ranks over a simulated 1 Gbit/s link
 #                                           end to end, its table printed, nothing left behind
@@ -175,7 +175,16 @@ frames)
     cmp -s "$work/one-$k.png" "$work/many-$k.png" || fail "frame $k differs from the single process's"
   done
   grep -q "rank 1: frame 4/5" "$work/out.txt" || fail "frame 4 was not rank 1's"
-  echo "5 frames over 2 ranks, each the single process's"
+  # A skinned model: each rank poses its frames' skins itself (DESIGN §14).
+  skinned=("$root/models/khronos/RiggedSimple/glTF/RiggedSimple.gltf" --frames 4 --fps 4 --size 48x36 --threads 1)
+  "$glint" render "${skinned[@]}" -o "$work/skin-one-%d.png" >/dev/null
+  "$mpirun" -np 2 --bind-to none "$glint" render "${skinned[@]}" -o "$work/skin-many-%d.png" >/dev/null
+  for k in 0 1 2 3; do
+    cmp -s "$work/skin-one-$k.png" "$work/skin-many-$k.png" ||
+      fail "skinned frame $k differs from the single process's"
+  done
+  cmp -s "$work/skin-one-0.png" "$work/skin-one-3.png" && fail "the skinned model did not move"
+  echo "5 frames over 2 ranks, each the single process's; and 4 frames of a skinned model"
   ;;
 cluster-sim)
   sim=("/usr/bin/python3" "$root/tools/cluster-sim")

@@ -85,3 +85,15 @@ def test_stats_are_the_command_lines(glint_module, tmp_path):
     for key in ("width", "height", "mode", "max_depth", "samples", "rays", "cutoff"):
         assert ours[key] == cli[key], key
     assert ours["accel"]["nodes_visited_per_ray"] == cli["accel"]["nodes_visited_per_ray"]
+
+
+def test_a_skinned_model_is_posed_at_time_as_the_command_line_poses_it(glint_module, tmp_path):
+    """time= poses a glTF skin (DESIGN §14): the array is the command line's file at that time,
+    and another time gives another image."""
+    model = "models/khronos/RiggedSimple/glTF/RiggedSimple.gltf"
+    at_one = glint_module.load(model, time=1.0).render(mode="ray", size=SIZE)
+    run_glint("render", model, "--time", "1", "--mode", "ray", "--size", "64x48",
+              "-o", str(tmp_path / "x.png"))
+    assert np.array_equal(at_one.image, read_png(tmp_path / "x.png"))
+    at_zero = glint_module.load(model, time=0.0).render(mode="ray", size=SIZE)
+    assert not np.array_equal(at_one.image, at_zero.image)
