@@ -480,7 +480,7 @@ INSTANTIATE_TEST_SUITE_P(EveryClass, BadRunTest, ::testing::Values(
     BadRun{"preview: no GL choice", "", "preview --gl egl", "--gl"},
     BadRun{"preview: click outside the image", "", "preview --click 800,10", "--click 800,10: the pixel is outside the 800x600 image"},
     BadRun{"preview: click not X,Y", "", "preview --click 10", "--click 10: expected X,Y"},
-    BadRun{"preview: unknown panel setting", "", "preview --set speed=11", "--set no setting named 'speed' (the panel's: mode, raster, resolve, depth, cutoff, tess, samples, aa, accel, view, panel, reference)"},
+    BadRun{"preview: unknown panel setting", "", "preview --set speed=11", "--set no setting named 'speed' (the panel's: mode, raster, resolve, depth, cutoff, tess, samples, aa, accel, view, panel, reference, time)"},
     BadRun{"preview: panel setting out of range", "", "preview --set depth=deep", "--set depth=deep: expected a number from 0 to 64"},
     BadRun{"preview: panel setting not a name", "", "preview --set mode=fast", "--set mode=fast: expected one of hybrid, ray"},
     BadRun{"tradeoff: bad scene", R"({"objects": 1})", "tradeoff scene.json", "scene.json: /objects: expected an array"},

@@ -405,10 +405,10 @@ std::vector<BadGltf> bad_gltf() {
          "cycle"},
         {"required extension",
          [](GltfBuilder& b) {
-             b.doc["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+             b.doc["extensionsRequired"] = {"KHR_materials_clearcoat"};
              return b.gltf();
          },
-         "bad.gltf: /extensionsRequired/0: requires extension 'KHR_draco_mesh_compression', "
+         "bad.gltf: /extensionsRequired/0: requires extension 'KHR_materials_clearcoat', "
          "which glint does not support"},
         {"truncated GLB",
          [](GltfBuilder& b) {
