@@ -312,9 +312,10 @@ KeyFrames keys(const tinygltf::AnimationSampler& s, const std::string& at, TrsPa
         TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT,
         TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT};
     if (path == TrsPath::weights) {
-        // Scalars, `targets` a key: read as one and regrouped by the width.
+        // Scalars, `targets` a key: read as one and regrouped by the width. At most as many
+        // values as a VEC3 channel may hold elements, however many targets there are.
         out.values = accessors_.read_accessor(s.output, TINYGLTF_TYPE_SCALAR, 1, quantized, use,
-                                              kMaxAnimationKeys * 3 * targets);
+                                              kMaxAnimationKeys * 3);
     } else {
         // Integer components: KHR_mesh_quantization's (rotations normalized, translations and
         // scales either).

@@ -28,6 +28,9 @@ int components(int type) {
     }
 }
 
+// The most bytes one decoded view may hold: a few bytes of compressed data may claim any size.
+constexpr std::size_t kMaxDecodedBytes = std::size_t{1} << 28;
+
 // A buffer the decoders append: its bytes, and views over them made as they are filled.
 class DecodedBuffer {
   public:
@@ -147,6 +150,9 @@ class DracoDecoder {
             fail(at, "the Draco attribute has " + std::to_string(a.num_components()) +
                          " components, the accessor " + std::to_string(n));
         const std::size_t element = static_cast<std::size_t>(n * bytes);
+        if (accessor.count > kMaxDecodedBytes / element)
+            fail(at, std::to_string(accessor.count) + " decoded vertices; the limit is " +
+                         std::to_string(kMaxDecodedBytes / element));
         const auto [view, offset] = out_.view(element * accessor.count);
         for (draco::PointIndex i(0); i < mesh.num_points(); ++i) {
             unsigned char* to = out_.at(offset + element * i.value());
@@ -203,6 +209,9 @@ class DracoDecoder {
             accessor.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT)
             fail(accessor_at, "indices are unsigned integer scalars");
         const std::uint64_t largest = bytes == 1 ? 0xff : bytes == 2 ? 0xffff : 0xffffffff;
+        if (count > kMaxDecodedBytes / static_cast<std::size_t>(bytes))
+            fail(at, std::to_string(count) + " decoded indices; the limit is " +
+                         std::to_string(kMaxDecodedBytes / static_cast<std::size_t>(bytes)));
         const auto [view, offset] = out_.view(count * static_cast<std::size_t>(bytes));
         for (draco::FaceIndex f(0); f < mesh.num_faces(); ++f)
             for (int c = 0; c < 3; ++c) {
@@ -288,6 +297,10 @@ class MeshoptDecoder {
             fail(at, "bytes " + std::to_string(offset) + " to " + std::to_string(offset + length) +
                          " are beyond buffer " + std::to_string(buffer) + "'s " +
                          std::to_string(data.size()) + " bytes");
+        if (view.byteLength > kMaxDecodedBytes)
+            fail(at, "the view's " + std::to_string(view.byteLength) + " bytes are beyond the " +
+                         std::to_string(kMaxDecodedBytes) + " glint decodes");
+        if (count == 0) fail(at + "/count", "must be at least 1");
         if (stride == 0 || count > view.byteLength / stride || count * stride != view.byteLength)
             fail(at, std::to_string(count) + " elements of " + std::to_string(stride) +
                          " bytes do not fill the view's " + std::to_string(view.byteLength));

@@ -4,6 +4,7 @@
 #include "io/gltf_accessors.h"
 #include "io/gltf_container.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace glint {
@@ -14,6 +15,10 @@ namespace {
 // eight weights is below 1e-6, and 16-bit normalized weights round each by 1/131070 at most.
 // The specification asks for a sum "as close as reasonably possible to 1" and names no number.
 constexpr double kWeightSumTolerance = 1e-4;
+
+// Morph target values a primitive may hold (targets × vertices): one accessor named by many
+// targets would otherwise make a small file fill the memory.
+constexpr std::size_t kMaxMorphValues = std::size_t{1} << 24;
 
 glm::dvec3 xyz(const std::vector<double>& v, std::size_t i) {
     return {v[3 * i], v[3 * i + 1], v[3 * i + 2]};
@@ -126,6 +131,10 @@ Deformable read_deformable(const tinygltf::Primitive& p,
         }
         return out;
     };
+    if (!p.targets.empty() && p.targets.size() > kMaxMorphValues / std::max<std::size_t>(n, 1))
+        accessors.fail(at + "/targets", std::to_string(p.targets.size()) + " morph targets of " +
+                                            std::to_string(n) + " vertices; the limit is " +
+                                            std::to_string(kMaxMorphValues) + " values");
     for (std::size_t t = 0; t < p.targets.size(); ++t) {
         Deformable::Target target;
         const std::string target_at = at + "/targets/" + std::to_string(t);
