@@ -42,7 +42,7 @@ class Reader {
   public:
     Reader(const tinygltf::Model& model, const std::string& name, const ModelFiles& files,
            const ModelOptions& options, std::vector<std::string> warnings)
-        : m_(model), name_(name), files_(files), options_(options), accessors_(model, name),
+        : m_(model), name_(name), options_(options), accessors_(model, name),
           materials_(model, name, files, options, scene_,
                      [this](const std::string& feature, const std::string& place) {
                          unused(feature, place);
@@ -89,7 +89,6 @@ class Reader {
     // A drawable primitive as glint has it: its mesh (in Scene::meshes) and material.
     struct Part {
         std::uint32_t mesh, material;
-        std::size_t primitive; // its index in the glTF mesh
     };
 
     // The glint meshes (one per drawable primitive) of glTF mesh `index`, with their materials:
@@ -108,7 +107,7 @@ class Reader {
             std::optional<TriangleMesh> triangles = primitive(mesh.primitives[p], at);
             if (!triangles) continue;
             const std::uint32_t material = primitive_material(mesh.primitives[p], at);
-            parts.push_back({static_cast<std::uint32_t>(scene_.meshes.size()), material, p});
+            parts.push_back({static_cast<std::uint32_t>(scene_.meshes.size()), material});
             scene_.meshes.push_back(std::move(*triangles));
         }
         return meshes_.emplace(index, std::move(parts)).first->second;
@@ -332,7 +331,7 @@ class Reader {
             d.mesh = static_cast<std::uint32_t>(scene_.meshes.size());
             d.node = k;
             d.skin = skin_index;
-            parts.push_back({d.mesh, primitive_material(mesh.primitives[p], p_at), p});
+            parts.push_back({d.mesh, primitive_material(mesh.primitives[p], p_at)});
             scene_.meshes.push_back(std::move(*triangles));
             motion_->deformables.push_back(std::move(d));
         }
@@ -672,7 +671,6 @@ class Reader {
 
     const tinygltf::Model& m_;
     const std::string& name_;
-    const ModelFiles& files_;
     const ModelOptions& options_;
     const GltfAccessors accessors_;
     Scene scene_;
