@@ -91,8 +91,9 @@ inline std::string draco_dome(const DracoDome& encoded, bool glb = false) {
 // The dome as gltfpack writes a file: each attribute and the indices a buffer view over a
 // fallback buffer with no bytes, its EXT_meshopt_compression naming the compressed bytes in the
 // file's buffer; the normals octahedral-filtered into 8-bit components (a KHR_mesh_quantization
-// accessor). `damage`: the compressed bytes overwritten.
-inline std::string meshopt_dome(bool damage = false) {
+// accessor). `damage`: the compressed bytes overwritten. `glb`: as a .glb, the compressed bytes
+// in its BIN chunk (buffer 0) and the fallback buffer 1, as gltfpack writes it.
+inline std::string meshopt_dome(bool damage = false, bool glb = false) {
     std::size_t fallback = 0; // bytes of the fallback buffer the views cover
     const std::string text = dome_file([&](GltfBuilder& b, const Dome& d) {
         const std::size_t n = d.xyz.size() / 3;
@@ -144,11 +145,35 @@ inline std::string meshopt_dome(bool damage = false) {
                       {"TEXCOORD_0", accessor(compressed(d.uv.data(), n, 8, "ATTRIBUTES", "NONE"), n, 5126, "VEC2", false)}}},
                     {"indices", accessor(compressed(d.corners.data(), d.corners.size(), 4, "TRIANGLES", "NONE"),
                                          d.corners.size(), 5125, "SCALAR", false)}};
-    });
-    json doc = json::parse(text);
-    doc["buffers"].push_back({{"byteLength", fallback},
-                              {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}});
-    return doc.dump();
+    }, {{"mesh", 0}}, glb);
+    const json fallback_buffer = {{"byteLength", fallback},
+                                  {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}};
+    if (!glb) {
+        json doc = json::parse(text);
+        doc["buffers"].push_back(fallback_buffer);
+        return doc.dump();
+    }
+    // The GLB's JSON chunk gains the buffer; its BIN chunk stays as it is.
+    const auto u32 = [](const std::string& bytes, std::size_t at) {
+        std::uint32_t v = 0;
+        for (int i = 3; i >= 0; --i) v = (v << 8) | static_cast<unsigned char>(bytes[at + static_cast<std::size_t>(i)]);
+        return v;
+    };
+    const std::uint32_t json_length = u32(text, 12);
+    json doc = json::parse(text.substr(20, json_length));
+    doc["buffers"].push_back(fallback_buffer);
+    std::string chunk = doc.dump();
+    while (chunk.size() % 4) chunk += ' ';
+    const std::string bin = text.substr(20 + json_length);
+    std::string out = "glTF";
+    const auto put = [&](std::size_t v) {
+        for (int i = 0; i < 4; ++i) out += static_cast<char>((v >> (8 * i)) & 0xff);
+    };
+    put(2);
+    put(20 + chunk.size() + bin.size());
+    put(chunk.size());
+    put(0x4E4F534A);
+    return out + chunk + bin;
 }
 
 // A 4 × 4 image of sixteen colours, as RGB bytes.

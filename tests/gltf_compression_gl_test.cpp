@@ -56,11 +56,15 @@ TEST(GltfCompression, AMeshoptMeshRendersWithinFourLevelsOfItsPlainTwin) {
     ModelOptions options;
     options.size = std::pair{48, 48};
     const Scene plain = parse_gltf(dome_file(plain_dome), "plain.gltf", {}, options);
-    const Scene packed = parse_gltf(meshopt_dome(), "meshopt.gltf", {}, options);
-    EXPECT_TRUE(packed.warnings.empty()) << packed.warnings.front();
-    ASSERT_EQ(packed.meshes.size(), 1u);
-    EXPECT_EQ(packed.meshes[0].vertices, plain.meshes[0].vertices) << "positions are lossless";
-    EXPECT_LE(largest_difference(both_modes(plain), both_modes(packed)), 4);
+    const Image twin = both_modes(plain);
+    for (const bool glb : {false, true}) {
+        const Scene packed =
+            parse_gltf(meshopt_dome(false, glb), glb ? "meshopt.glb" : "meshopt.gltf", {}, options);
+        EXPECT_TRUE(packed.warnings.empty()) << packed.warnings.front();
+        ASSERT_EQ(packed.meshes.size(), 1u);
+        EXPECT_EQ(packed.meshes[0].vertices, plain.meshes[0].vertices) << "positions are lossless";
+        EXPECT_LE(largest_difference(twin, both_modes(packed)), 4) << (glb ? "GLB" : "glTF");
+    }
     try {
         parse_gltf(meshopt_dome(true), "meshopt.gltf", {}, options);
         ADD_FAILURE() << "damaged bytes accepted";

@@ -166,6 +166,7 @@ int main(int argc, char** argv) {
     std::ofstream(dir / "draco.gltf", std::ios::binary) << glint::testing::draco_dome(draco);
     std::ofstream(dir / "draco.glb", std::ios::binary) << glint::testing::draco_dome(draco, true);
     std::ofstream(dir / "meshopt.gltf", std::ios::binary) << glint::testing::meshopt_dome();
+    std::ofstream(dir / "meshopt.glb", std::ios::binary) << glint::testing::meshopt_dome(false, true);
     std::ofstream(dir / "webp.gltf", std::ios::binary) << glint::testing::webp_quad(true).gltf();
     return 0;
 }
