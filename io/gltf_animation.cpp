@@ -11,11 +11,15 @@ namespace glint {
 
 namespace {
 
-glm::dvec4 key(const KeyFrames& keys, std::size_t k, int element) {
+// Component c of key k's element (0 in-tangent or value, 1 value, 2 out-tangent).
+double component(const KeyFrames& keys, std::size_t k, int element, int c) {
     const int per_key = keys.interpolation == Interpolation::cubic_spline ? 3 : 1;
-    const std::size_t at = (k * per_key + element) * keys.width;
+    return keys.values[(k * per_key + element) * keys.width + c];
+}
+
+glm::dvec4 key(const KeyFrames& keys, std::size_t k, int element) {
     glm::dvec4 v(0.0);
-    for (int c = 0; c < keys.width; ++c) v[c] = keys.values[at + c];
+    for (int c = 0; c < keys.width; ++c) v[c] = component(keys, k, element, c);
     return v;
 }
 
@@ -44,12 +48,6 @@ KeyPlace locate(const std::vector<double>& times, double t) {
         static_cast<std::size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin()) - 1;
     const double span = times[k + 1] - times[k];
     return {k, (t - times[k]) / span, span, false};
-}
-
-// Component c of key k's element (0 in-tangent or value, 1 value, 2 out-tangent).
-double component(const KeyFrames& keys, std::size_t k, int element, int c) {
-    const int per_key = keys.interpolation == Interpolation::cubic_spline ? 3 : 1;
-    return keys.values[(k * per_key + element) * keys.width + c];
 }
 
 // Component c at `at`, interpolated as a translation is (STEP, LINEAR, CUBICSPLINE's Hermite).
@@ -267,13 +265,11 @@ class AnimationReader {
     }
 
   private:
-// The morph targets of node k's mesh (its first primitive's: the loader checks that every
-// primitive has as many), or 0.
+// The morph targets of node k's mesh, or 0.
 std::size_t morph_targets(std::size_t k) const {
     const int mesh = m_.nodes[k].mesh;
     if (mesh < 0 || static_cast<std::size_t>(mesh) >= m_.meshes.size()) return 0;
-    const tinygltf::Mesh& m = m_.meshes[static_cast<std::size_t>(mesh)];
-    return m.primitives.empty() ? 0 : m.primitives[0].targets.size();
+    return morph_target_count(m_.meshes[static_cast<std::size_t>(mesh)]);
 }
 
 // A sampler's keys for a channel of `path`: times strictly increasing, outputs of the path's

@@ -253,13 +253,12 @@ class Reader {
 
     // The morph targets of glTF mesh `index` (its primitives have as many: check_targets).
     std::size_t morph_targets(int index) const {
-        const tinygltf::Mesh& mesh = m_.meshes[static_cast<std::size_t>(index)];
-        return mesh.primitives.empty() ? 0 : mesh.primitives[0].targets.size();
+        return morph_target_count(m_.meshes[static_cast<std::size_t>(index)]);
     }
 
     // Every primitive of a mesh has as many morph targets, and its `weights` one a target.
     void check_targets(const tinygltf::Mesh& mesh, const std::string& at) const {
-        const std::size_t n = mesh.primitives.empty() ? 0 : mesh.primitives[0].targets.size();
+        const std::size_t n = morph_target_count(mesh);
         for (std::size_t p = 1; p < mesh.primitives.size(); ++p)
             if (mesh.primitives[p].targets.size() != n)
                 fail(at + "/primitives/" + std::to_string(p) + "/targets",
@@ -617,13 +616,12 @@ class Reader {
             std::vector<SceneObject> at_rest = scene_.objects;
             for (std::size_t i = 0; i < at_rest.size(); ++i)
                 at_rest[i].transform = rest_transforms_[i];
-            std::vector<TriangleMesh> posed_at_rest;
-            if (motion_ && motion_->animated && !motion_->deformables.empty()) {
-                posed_at_rest = scene_.meshes;
-                motion_->deform(posed_at_rest, motion_->world(std::nullopt), std::nullopt);
-            }
-            const std::optional<ModelSphere> sphere =
-                model_sphere(at_rest, posed_at_rest.empty() ? scene_.meshes : posed_at_rest);
+            // Skins and morph targets are posed at rest for it and then at the time again: a pose
+            // rewrites every vertex it moves from the file's, so no copy of the meshes is needed.
+            const bool deformed = motion_ && motion_->animated && !motion_->deformables.empty();
+            if (deformed) motion_->deform(scene_.meshes, motion_->world(std::nullopt), std::nullopt);
+            const std::optional<ModelSphere> sphere = model_sphere(at_rest, scene_.meshes);
+            if (deformed) motion_->deform(scene_.meshes, motion_->world(options_.time), options_.time);
             light_model(scene_, sphere ? std::optional(sphere->centre) : std::nullopt);
             light_places_.assign(scene_.lights.size(), "the default lights");
         }

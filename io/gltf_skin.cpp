@@ -66,6 +66,10 @@ void deform(const Deformable& d, std::span<const double> morph,
     }
 }
 
+std::size_t morph_target_count(const tinygltf::Mesh& mesh) {
+    return mesh.primitives.empty() ? 0 : mesh.primitives[0].targets.size();
+}
+
 GltfSkin read_skin(const tinygltf::Model& model, int index, const GltfAccessors& accessors) {
     const tinygltf::Skin& s = model.skins[static_cast<std::size_t>(index)];
     const std::string at = pointer("skins", static_cast<std::size_t>(index));

@@ -19,6 +19,7 @@
 
 namespace tinygltf {
 class Model;
+struct Mesh;
 struct Primitive;
 }
 
@@ -59,6 +60,10 @@ void deform(const Deformable& d, std::span<const double> morph,
 
 // What a reader skips with a warning: the feature, and the first place it is met.
 using UnusedFeature = std::function<void(const std::string& feature, const std::string& place)>;
+
+// The morph targets of a glTF mesh: its first primitive's (the loader holds every primitive of a
+// mesh to as many).
+std::size_t morph_target_count(const tinygltf::Mesh& mesh);
 
 // Skin `index` of `model` (in range: the caller checks): its joints exist, its inverse bind
 // matrices are MAT4 floats, one a joint, finite and within the coordinate limit.
