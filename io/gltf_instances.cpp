@@ -14,7 +14,7 @@ std::vector<DMat4> read_instances(const tinygltf::Node& node, const std::string&
     if (it == node.extensions.end()) return {};
     const std::string ext_at = at + "/extensions/EXT_mesh_gpu_instancing";
     const tinygltf::Value& attributes = it->second.Get("attributes");
-    if (!attributes.IsObject() || attributes.Keys().empty())
+    if (!attributes.IsObject())
         accessors.fail(ext_at + "/attributes", "must name TRANSLATION, ROTATION or SCALE");
     std::optional<std::size_t> count;
     std::string first;
