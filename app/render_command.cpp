@@ -314,8 +314,6 @@ int run_sequence(const RenderArgs& args) {
     std::fflush(stdout);
     double traced = 0, posing = 0, structures = 0;
     int written = 0;
-    const std::vector<std::uint32_t> moving_meshes =
-        scene.animation ? scene.animation->moving_meshes() : std::vector<std::uint32_t>();
     for (int k = rank(); k < args.frames; k += ranks()) {
         const Stopwatch frame_watch;
         const double t = args.scene.time + k / args.fps;
@@ -328,8 +326,7 @@ int run_sequence(const RenderArgs& args) {
             });
             posing += phase.lap();
             // Skinned and morphed meshes moved: their BVHs are built again, the rest kept.
-            if (!moving_meshes.empty())
-                geometry = std::make_shared<const SceneGeometry>(*geometry, scene, moving_meshes);
+            geometry = SceneGeometry::posed(geometry, scene);
             structures += phase.lap();
         }
         if (args.orbit) scene.camera = orbit_camera(unorbited, k, args.frames);

@@ -188,13 +188,9 @@ void Preview::set(const std::string& name, const std::string& value) {
 void Preview::pose() {
     if (!scene_.animation) return;
     scene_.animation->pose(scene_, time_);
-    const std::vector<std::uint32_t> moving = scene_.animation->moving_meshes();
     const std::shared_ptr<const SceneGeometry> before =
         posed_geometry_ ? posed_geometry_ : world_ ? world_->geometry() : nullptr;
-    if (before && !moving.empty())
-        posed_geometry_ = std::make_shared<const SceneGeometry>(*before, scene_, moving);
-    else
-        posed_geometry_ = before;
+    posed_geometry_ = before ? SceneGeometry::posed(before, scene_) : nullptr;
     world_.reset(); // the objects moved: the top level is built afresh over the posed geometry
     upload_needed_ = dirty_ = true;
 }

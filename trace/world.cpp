@@ -56,6 +56,14 @@ SceneGeometry::SceneGeometry(const SceneGeometry& previous, const Scene& scene,
     build_seconds = watch.seconds();
 }
 
+std::shared_ptr<const SceneGeometry>
+SceneGeometry::posed(std::shared_ptr<const SceneGeometry> previous, const Scene& scene) {
+    const std::vector<std::uint32_t> moving =
+        scene.animation ? scene.animation->moving_meshes() : std::vector<std::uint32_t>();
+    if (moving.empty()) return previous;
+    return std::make_shared<const SceneGeometry>(*previous, scene, moving);
+}
+
 void SceneGeometry::prepare_materials(const Scene& scene) {
     const auto texture = [&](std::uint32_t index) {
         return index == kNoTexture ? nullptr : &textures[index];
@@ -82,6 +90,7 @@ void SceneGeometry::prepare_materials(const Scene& scene) {
                              cut_out, Vec3(m.emission), texture(m.emission_texture),
                              texture(m.normal_texture), m.normal_scale, metal_rough, m.unlit});
         transmissive |= m.transmission > 0;
+        unlit |= m.unlit;
         secondary |= m.reflectivity > 0 || m.transmission > 0;
     }
 }

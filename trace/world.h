@@ -112,11 +112,16 @@ struct SceneGeometry {
     // Scene::meshes) prepared again, every other shared with `previous`.
     SceneGeometry(const SceneGeometry& previous, const Scene& scene,
                   std::span<const std::uint32_t> moved);
+    // `scene`'s geometry after its animation posed it: `previous` itself where the pose moves no
+    // mesh (node animation alone), else a geometry with the moving meshes prepared again.
+    static std::shared_ptr<const SceneGeometry> posed(std::shared_ptr<const SceneGeometry> previous,
+                                                      const Scene& scene);
 
     std::vector<std::shared_ptr<const Mesh>> meshes;
     std::vector<Texture> textures; // what Phong::texture points into
     std::vector<Phong> materials;
     bool transmissive = false; // some material transmits: shadow rays must count crossings
+    bool unlit = false;        // some material is unlit: its hits cast no shadow rays
     // Some material reflects or transmits: a hit may cast a secondary ray, or omit one (the
     // frame's cut-off weights, trace/cutoff.h). Without one, every omitted weight is 0.
     bool secondary = false;
