@@ -94,6 +94,7 @@ void TileLighting::cast_shadows(const World& world, std::span<const Hit> hits) {
     if (lights_ == 0) return;
     light_.assign(lit * lights_, 0);
     const bool glass = world.geometry()->transmissive;
+    const bool unlit = world.geometry()->unlit; // most scenes have no unlit material to look up
     for (std::size_t j = 0; j < lights_; ++j) {
         const Light& light = world.lights()[j];
         Ray shadow[kMaxPacket];
@@ -115,7 +116,7 @@ void TileLighting::cast_shadows(const World& world, std::span<const Hit> hits) {
         for (std::size_t n = 0; n < lit; ++n) {
             const SurfacePoint& surface = surfaces_[n];
             // An unlit surface casts none (shade() adds no light to it).
-            if (!hits[n].found() || world.material(hits[n].object).unlit ||
+            if (!hits[n].found() || (unlit && world.material(hits[n].object).unlit) ||
                 !light_direction(surface, light).in_front())
                 continue;
             shadow[count] = shadow_ray(surface, light.position);
