@@ -99,9 +99,11 @@ class GltfBuilder {
     std::string glb() const {
         json d = doc;
         d["buffers"] = json::array({{{"byteLength", bin_.size()}}});
-        std::string text = d.dump();
+        return glb_of(d.dump(), bin_);
+    }
+    // A GLB of this JSON text and these BIN chunk bytes (each padded to 4 bytes).
+    static std::string glb_of(std::string text, std::string bin) {
         while (text.size() % 4) text += ' ';
-        std::string bin = bin_;
         while (bin.size() % 4) bin += '\0';
         std::string out = "glTF";
         const auto u32 = [&](std::uint32_t v) {

@@ -154,26 +154,15 @@ inline std::string meshopt_dome(bool damage = false, bool glb = false) {
         return doc.dump();
     }
     // The GLB's JSON chunk gains the buffer; its BIN chunk stays as it is.
-    const auto u32 = [](const std::string& bytes, std::size_t at) {
+    const auto u32 = [&](std::size_t at) {
         std::uint32_t v = 0;
-        for (int i = 3; i >= 0; --i) v = (v << 8) | static_cast<unsigned char>(bytes[at + static_cast<std::size_t>(i)]);
+        for (int i = 3; i >= 0; --i) v = (v << 8) | static_cast<unsigned char>(text[at + static_cast<std::size_t>(i)]);
         return v;
     };
-    const std::uint32_t json_length = u32(text, 12);
+    const std::size_t json_length = u32(12), bin_at = 20 + json_length;
     json doc = json::parse(text.substr(20, json_length));
     doc["buffers"].push_back(fallback_buffer);
-    std::string chunk = doc.dump();
-    while (chunk.size() % 4) chunk += ' ';
-    const std::string bin = text.substr(20 + json_length);
-    std::string out = "glTF";
-    const auto put = [&](std::size_t v) {
-        for (int i = 0; i < 4; ++i) out += static_cast<char>((v >> (8 * i)) & 0xff);
-    };
-    put(2);
-    put(20 + chunk.size() + bin.size());
-    put(chunk.size());
-    put(0x4E4F534A);
-    return out + chunk + bin;
+    return GltfBuilder::glb_of(doc.dump(), text.substr(bin_at + 8, u32(bin_at)));
 }
 
 // A 4 × 4 image of sixteen colours, as RGB bytes.

@@ -61,9 +61,9 @@ struct CutOut {
     float alpha = 1.0f;
     float cutoff = 0.5f;
     // One-sided faces: only hits on a triangle's counter-clockwise side in object space (its
-    // winding normal towards the ray: mesh.h, seen_from_behind) count. Tested in object space, this is the side the
-    // placed normal M⁻ᵀn faces whatever M's determinant: the winding glTF flips under a
-    // negative determinant is the winding seen in the world.
+    // winding normal towards the ray: mesh.h, seen_from_behind) count. Tested in object space,
+    // this is the side the placed normal M⁻ᵀn faces whatever M's determinant: the winding glTF
+    // flips under a negative determinant is the winding seen in the world.
     bool one_sided = false;
 };
 
