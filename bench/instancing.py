@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Instancing's cost (issue 73): 10^4 instances of a 10^5-triangle mesh (EXT_mesh_gpu_instancing)
 against the mesh alone (peak RSS: what each instance adds), and their frame against 10^4 plain
-boxes at the same places (the top level's share: the same count of objects, each a unit shape).
+boxes at the same places (the top level's share: the same count of objects, each a unit shape);
+and each run's whole wall time, loading included.
 The three are alternated run by run; each figure is the median of the runs with its spread.
 
     python3 bench/instancing.py [GLINT] [--runs 9] [--count 10000] [--size 640x480]
@@ -16,6 +17,7 @@ import statistics
 import struct
 import subprocess
 import tempfile
+import time
 
 EYE, LOOK_AT = (50.0, 45.0, 125.0), (50.0, 0.0, 45.0)
 
@@ -112,11 +114,13 @@ def boxes(path, count):
 def run(glint, scene, size, out):
     cmd = ["/usr/bin/time", "-f", "peak %M", glint, "render", scene, "--mode", "ray", "--size", size,
            "-o", out]
+    started = time.monotonic()
     r = subprocess.run(cmd, capture_output=True, text=True, check=True)
+    wall = time.monotonic() - started
     text = r.stdout + r.stderr
     render = float(re.search(r"\(render ([0-9.]+) s\)", text).group(1))
     peak_mb = int(re.search(r"peak (\d+)", text).group(1)) / 1024
-    return render, peak_mb
+    return render, peak_mb, wall
 
 
 def main():
@@ -139,14 +143,17 @@ def main():
         for name, scene in files.items():
             runs[name].append(run(args.glint, scene, args.size, os.path.join(d, "out.png")))
     print(f"{triangles} triangles a mesh, {args.runs} interleaved runs, ray mode, {args.size}")
-    print(f"{'scene':<18} {'frame s (median, min–max)':<30} {'peak RSS MB (median, min–max)'}")
+    print(f"{'scene':<18} {'frame s (median, min–max)':<30} {'peak RSS MB (median, min–max)':<32}"
+          f"wall s (median, min–max)")
     med = {}
     for name, rs in runs.items():
         t = [r[0] for r in rs]
         m = [r[1] for r in rs]
+        w = [r[2] for r in rs]
         med[name] = (statistics.median(t), statistics.median(m))
         print(f"{name:<18} {med[name][0]:.3f} ({min(t):.3f}–{max(t):.3f}){'':<10} "
-              f"{med[name][1]:.1f} ({min(m):.1f}–{max(m):.1f})")
+              f"{med[name][1]:.1f} ({min(m):.1f}–{max(m):.1f}){'':<13} "
+              f"{statistics.median(w):.2f} ({min(w):.2f}–{max(w):.2f})")
     inst, alone, box = (med[f"{args.count} instances"], med["mesh alone"], med[f"{args.count} boxes"])
     ratios = [a[0] / b[0] for a, b in zip(runs[f"{args.count} instances"], runs[f"{args.count} boxes"])]
     print(f"instances' peak RSS over the mesh alone: +{inst[1] - alone[1]:.1f} MB "
